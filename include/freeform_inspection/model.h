@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "freeform_inspection/mesh.h"
+#include "freeform_inspection/types.h"
+
+/// @file model.h
+/// The CAD model: the mesh and everything computed once about it. Built once, const afterwards,
+/// shared between inspections (the node keeps it across scans, the CLI for one run).
+
+namespace freeform_inspection {
+
+/// @brief Metres per file unit for a unit name: "m" → 1, "mm" → 0.001, "in" → 0.0254.
+/// @return nothing for any other name (units are never guessed).
+std::optional<double> unitScale(const std::string& units);
+
+/// A loaded CAD model. Immutable once built.
+class Model {
+ public:
+  /// @brief Takes a mesh already in metres. Use loadModel() to read one from a file.
+  Model(TriangleMesh mesh, std::string id, std::string source);
+
+  const TriangleMesh& mesh() const { return mesh_; }
+  const BoundingBox& bounds() const { return bounds_; }
+  const MeshTopology& topology() const { return topology_; }
+  const std::string& id() const { return id_; }
+  const std::string& source() const { return source_; }  ///< file it was loaded from
+
+ private:
+  TriangleMesh mesh_;
+  BoundingBox bounds_;
+  MeshTopology topology_;
+  std::string id_;
+  std::string source_;
+};
+
+/// Result of loading a model.
+struct ModelLoadResult {
+  Status status;                       ///< not ok: `model` is null
+  std::shared_ptr<const Model> model;  ///< the model when status is ok
+  std::vector<std::string> warnings;   ///< e.g. open or non-manifold mesh (signs less reliable)
+};
+
+/// @brief Loads a CAD file (STL, PLY, OBJ) with an explicit unit scale and checks it is usable:
+/// at least one face, a non-zero extent. Open or non-manifold meshes load with a warning.
+/// @param scale [m per file unit], e.g. from unitScale("mm").
+ModelLoadResult loadModel(const std::string& path, double scale, const std::string& id);
+
+}  // namespace freeform_inspection

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+/// @file types.h
+/// Basic geometry containers and the status every stage returns.
+///
+/// Transforms are named T_<to>_<from>: T_cad_scan maps scan coordinates into the CAD frame.
+/// All lengths are metres (REP 103) once data has passed through the loaders.
+
+namespace freeform_inspection {
+
+/// Why a stage stopped. Data-dependent failures are reported here, never thrown.
+enum class StatusCode {
+  kOk = 0,
+  kInvalidInput,     ///< empty, non-finite, malformed or unreadable input
+  kDegenerateInput,  ///< well-formed but unusable: flat, collinear, zero area, too few points
+  kUnitsMismatch,    ///< sizes that differ by the factor of a unit mix-up
+  kNotConverged,     ///< an iterative stage ran out of iterations
+  kAmbiguous,        ///< several solutions explain the data equally well
+  kNotImplemented,   ///< the stage exists in the interface but not yet in the code
+};
+
+/// Short stable name of a status code ("ok", "invalid_input", ...), for logs and JSON.
+const char* toString(StatusCode code);
+
+/// A status code plus a message that names the offending quantity and its value.
+struct Status {
+  StatusCode code = StatusCode::kOk;  ///< kOk when the stage succeeded
+  std::string message;                ///< human-readable reason; empty when ok
+
+  bool ok() const { return code == StatusCode::kOk; }
+  static Status success() { return Status{}; }
+  static Status failure(StatusCode code, std::string message) {
+    return Status{code, std::move(message)};
+  }
+};
+
+using Points = std::vector<Eigen::Vector3d>;     ///< positions (metres once loaded) or unit vectors
+using Triangles = std::vector<Eigen::Vector3i>;  ///< vertex indices, counter-clockwise from outside
+
+/// A triangle mesh; faces index into `vertices` and every index must be in range. STL files are
+/// welded on load (each position once); PLY and OBJ keep their vertices as stored.
+struct TriangleMesh {
+  Points vertices;      ///< metres once loaded (the functions work in any length unit)
+  Triangles faces;      ///< counter-clockwise seen from outside the material
+  Points face_normals;  ///< unit outward normal per face (zero for degenerate faces)
+};
+
+/// A scan: points, with faces when the scanner delivered a mesh, with normals when known.
+struct Scan {
+  Points points;    ///< [m] finite positions only
+  Triangles faces;  ///< empty for a point cloud
+  Points normals;   ///< empty, or one per point: unit length, or zero where unknown
+};
+
+/// Axis-aligned bounding box.
+struct BoundingBox {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();  ///< [m]
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();  ///< [m]
+
+  Eigen::Vector3d extent() const { return max - min; }
+  double diagonal() const { return extent().norm(); }
+};
+
+}  // namespace freeform_inspection

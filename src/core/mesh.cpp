@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "freeform_inspection/mesh.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+
+namespace freeform_inspection {
+namespace {
+
+// Hash of the exact bit pattern: welding joins only corners that the file stored identically,
+// so no tolerance can merge distinct CAD vertices of a fine mesh.
+struct ExactPointHash {
+  std::size_t operator()(const Eigen::Vector3d& p) const {
+    std::size_t h = 1469598103934665603ull;
+    for (int i = 0; i < 3; ++i) {
+      h ^= std::hash<double>()(p[i]) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    }
+    return h;
+  }
+};
+
+struct ExactPointEqual {
+  bool operator()(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
+    return a.x() == b.x() && a.y() == b.y() && a.z() == b.z();
+  }
+};
+
+std::uint64_t edgeKey(int a, int b) {
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
+  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (hi << 32) | lo;
+}
+
+// Per undirected edge: how many faces use it, and how many traverse it from low to high index.
+struct EdgeUse {
+  int faces = 0;
+  int forward = 0;
+};
+
+bool isDegenerate(const Eigen::Vector3i& f, const Points& v) {
+  if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) {
+    return true;
+  }
+  return (v[f[1]] - v[f[0]]).cross(v[f[2]] - v[f[0]]).squaredNorm() == 0.0;
+}
+
+}  // namespace
+
+const char* toString(StatusCode code) {
+  switch (code) {
+    case StatusCode::kOk:
+      return "ok";
+    case StatusCode::kInvalidInput:
+      return "invalid_input";
+    case StatusCode::kDegenerateInput:
+      return "degenerate_input";
+    case StatusCode::kUnitsMismatch:
+      return "units_mismatch";
+    case StatusCode::kNotConverged:
+      return "not_converged";
+    case StatusCode::kAmbiguous:
+      return "ambiguous";
+    case StatusCode::kNotImplemented:
+      return "not_implemented";
+  }
+  return "unknown";
+}
+
+BoundingBox computeBoundingBox(const Points& points) {
+  BoundingBox box;
+  if (points.empty()) {
+    return box;
+  }
+  box.min = box.max = points.front();
+  for (const auto& p : points) {
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  return box;
+}
+
+Points computeFaceNormals(const Points& vertices, const Triangles& faces) {
+  Points normals;
+  normals.reserve(faces.size());
+  for (const auto& f : faces) {
+    const Eigen::Vector3d n =
+        (vertices[f[1]] - vertices[f[0]]).cross(vertices[f[2]] - vertices[f[0]]);
+    const double length = n.norm();
+    normals.push_back(length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero());
+  }
+  return normals;
+}
+
+TriangleMesh weldTriangleSoup(const Points& corners) {
+  TriangleMesh mesh;
+  std::unordered_map<Eigen::Vector3d, int, ExactPointHash, ExactPointEqual> index;
+  index.reserve(corners.size() / 2);
+  const std::size_t triangles = corners.size() / 3;
+  mesh.faces.reserve(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    Eigen::Vector3i face;
+    for (int c = 0; c < 3; ++c) {
+      const auto& p = corners[3 * t + static_cast<std::size_t>(c)];
+      const auto inserted = index.emplace(p, static_cast<int>(mesh.vertices.size()));
+      if (inserted.second) {
+        mesh.vertices.push_back(p);
+      }
+      face[c] = inserted.first->second;
+    }
+    if (face[0] != face[1] && face[1] != face[2] && face[0] != face[2]) {
+      mesh.faces.push_back(face);
+    }
+  }
+  mesh.face_normals = computeFaceNormals(mesh.vertices, mesh.faces);
+  return mesh;
+}
+
+MeshTopology analyzeTopology(const TriangleMesh& mesh) {
+  MeshTopology topology;
+  std::unordered_map<std::uint64_t, EdgeUse> edges;
+  edges.reserve(mesh.faces.size() * 2);
+  std::vector<bool> used(mesh.vertices.size(), false);
+  for (const auto& f : mesh.faces) {
+    if (isDegenerate(f, mesh.vertices)) {
+      ++topology.degenerate_faces;
+    }
+    const Eigen::Vector3d& a = mesh.vertices[f[0]];
+    const Eigen::Vector3d& b = mesh.vertices[f[1]];
+    const Eigen::Vector3d& c = mesh.vertices[f[2]];
+    topology.signed_volume += a.dot(b.cross(c)) / 6.0;  // divergence theorem, tetra to origin
+    topology.area += 0.5 * (b - a).cross(c - a).norm();
+    for (int i = 0; i < 3; ++i) {
+      const int from = f[i];
+      const int to = f[(i + 1) % 3];
+      used[static_cast<std::size_t>(from)] = true;
+      EdgeUse& use = edges[edgeKey(from, to)];
+      ++use.faces;
+      use.forward += from < to ? 1 : 0;
+    }
+  }
+  topology.edges = edges.size();
+  for (const auto& entry : edges) {
+    const EdgeUse& use = entry.second;
+    if (use.faces == 1) {
+      ++topology.boundary_edges;
+    } else if (use.faces > 2) {
+      ++topology.non_manifold_edges;
+    } else if (use.forward != 1) {
+      ++topology.misoriented_edges;
+    }
+  }
+  topology.unused_vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+  return topology;
+}
+
+}  // namespace freeform_inspection

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "conversions.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <optional>
+
+#include <tf2_eigen/tf2_eigen.h>
+
+namespace freeform_inspection_ros {
+namespace {
+
+using sensor_msgs::PointField;
+
+struct FieldReader {
+  std::uint32_t offset = 0;
+  std::uint8_t datatype = PointField::FLOAT32;
+
+  double read(const std::uint8_t* point) const {
+    if (datatype == PointField::FLOAT64) {
+      double value;
+      std::memcpy(&value, point + offset, sizeof(value));
+      return value;
+    }
+    float value;
+    std::memcpy(&value, point + offset, sizeof(value));
+    return static_cast<double>(value);
+  }
+};
+
+std::optional<FieldReader> findField(const sensor_msgs::PointCloud2& cloud,
+                                     const std::string& name,
+                                     std::string* error) {
+  for (const auto& field : cloud.fields) {
+    if (field.name != name) {
+      continue;
+    }
+    const std::uint32_t size = field.datatype == PointField::FLOAT64 ? 8 : 4;
+    if (field.datatype != PointField::FLOAT32 && field.datatype != PointField::FLOAT64) {
+      *error = "field '" + name + "' has datatype " + std::to_string(field.datatype) +
+               "; only FLOAT32 (7) and FLOAT64 (8) coordinates are supported";
+    } else if (field.offset + size > cloud.point_step) {
+      *error = "field '" + name + "' at offset " + std::to_string(field.offset) +
+               " does not fit in point_step " + std::to_string(cloud.point_step);
+    } else {
+      return FieldReader{field.offset, field.datatype};
+    }
+    return std::nullopt;
+  }
+  *error = "cloud has no '" + name + "' field";
+  return std::nullopt;
+}
+
+std::string checkLayout(const sensor_msgs::PointCloud2& cloud) {
+  const std::uint64_t row_bytes = std::uint64_t{cloud.width} * cloud.point_step;
+  if (cloud.is_bigendian) {
+    return "big-endian clouds are not supported";
+  }
+  if (cloud.row_step < row_bytes) {
+    return "row_step " + std::to_string(cloud.row_step) + " < width " +
+           std::to_string(cloud.width) + " * point_step " + std::to_string(cloud.point_step);
+  }
+  if (cloud.data.size() < std::uint64_t{cloud.row_step} * cloud.height) {
+    return "data holds " + std::to_string(cloud.data.size()) + " bytes, less than row_step " +
+           std::to_string(cloud.row_step) + " * height " + std::to_string(cloud.height);
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string errorCode(fi::StatusCode code) {
+  std::string text = fi::toString(code);
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) {
+    return static_cast<char>(std::toupper(c));
+  });
+  return text;
+}
+
+CloudConversion cloudToScan(const sensor_msgs::PointCloud2& cloud) {
+  CloudConversion result;
+  std::string error = checkLayout(cloud);
+  std::optional<FieldReader> x;
+  std::optional<FieldReader> y;
+  std::optional<FieldReader> z;
+  if (error.empty() && (x = findField(cloud, "x", &error)) && (y = findField(cloud, "y", &error)) &&
+      (z = findField(cloud, "z", &error))) {
+    result.scan.points.reserve(std::size_t{cloud.width} * cloud.height);
+    for (std::uint32_t row = 0; row < cloud.height; ++row) {
+      const std::uint8_t* row_data = cloud.data.data() + std::size_t{row} * cloud.row_step;
+      for (std::uint32_t col = 0; col < cloud.width; ++col) {
+        const std::uint8_t* point = row_data + std::size_t{col} * cloud.point_step;
+        result.scan.points.emplace_back(x->read(point), y->read(point), z->read(point));
+      }
+    }
+    return result;
+  }
+  result.status =
+      fi::Status::failure(fi::StatusCode::kInvalidInput, "invalid PointCloud2: " + error);
+  return result;
+}
+
+visualization_msgs::Marker modelMarker(const fi::Model& model, const std::string& frame) {
+  visualization_msgs::Marker marker;
+  marker.header.frame_id = frame;
+  marker.ns = "cad";
+  marker.id = 0;
+  marker.type = visualization_msgs::Marker::TRIANGLE_LIST;
+  marker.action = visualization_msgs::Marker::ADD;
+  marker.pose.orientation.w = 1.0;
+  marker.scale.x = marker.scale.y = marker.scale.z = 1.0;
+  marker.color.r = marker.color.g = marker.color.b = 0.7F;
+  marker.color.a = 0.6F;
+  const auto& mesh = model.mesh();
+  marker.points.reserve(mesh.faces.size() * 3);
+  for (const auto& face : mesh.faces) {
+    for (int corner = 0; corner < 3; ++corner) {
+      geometry_msgs::Point p;
+      p.x = mesh.vertices[static_cast<std::size_t>(face[corner])].x();
+      p.y = mesh.vertices[static_cast<std::size_t>(face[corner])].y();
+      p.z = mesh.vertices[static_cast<std::size_t>(face[corner])].z();
+      marker.points.push_back(p);
+    }
+  }
+  return marker;
+}
+
+freeform_inspection::InspectionReport errorReport(const std::string& error_code,
+                                                  const std::string& message) {
+  freeform_inspection::InspectionReport report;
+  report.status = freeform_inspection::InspectionReport::ERROR;
+  report.error_code = error_code;
+  report.message = message;
+  report.registration_status = fi::toString(fi::RegistrationStatus::kFailed);
+  report.transform.transform.rotation.w = 1.0;
+  return report;
+}
+
+freeform_inspection::InspectionReport toReport(const fi::InspectionResult& result,
+                                               const std_msgs::Header& scan_header,
+                                               const std::string& part_frame) {
+  using Report = freeform_inspection::InspectionReport;
+  Report report;
+  report.header = scan_header;
+  report.registration_status = fi::toString(result.registration);
+  report.message = result.status.message;
+  if (!result.status.ok() && result.status.code != fi::StatusCode::kAmbiguous) {
+    report.status = Report::ERROR;
+    report.error_code = errorCode(result.status.code);
+  } else if (result.verdict == fi::Verdict::kPass) {
+    report.status = Report::PASS;
+  } else if (result.verdict == fi::Verdict::kFail) {
+    report.status = Report::FAIL;
+  } else {
+    report.status = Report::NOT_EVALUATED;
+  }
+  report.transform = tf2::eigenToTransform(result.T_cad_scan.inverse());
+  report.transform.header = scan_header;
+  report.transform.child_frame_id = part_frame;
+  report.rmse = result.rmse;
+  report.fitness = result.fitness;
+  report.counts.scan_points = static_cast<std::uint32_t>(result.counts.scan_points);
+  report.counts.cad_vertices = static_cast<std::uint32_t>(result.counts.cad_vertices);
+  report.counts.features = static_cast<std::uint32_t>(result.counts.features);
+  report.counts.candidates = static_cast<std::uint32_t>(result.counts.candidates);
+  report.counts.correspondences = static_cast<std::uint32_t>(result.counts.correspondences);
+  report.deviation.n_invalid = static_cast<std::uint32_t>(result.counts.non_finite);
+  for (const auto& timing : result.timings) {
+    freeform_inspection::Timing stage;
+    stage.stage = timing.stage;
+    stage.seconds = timing.seconds;
+    report.timings.push_back(stage);
+  }
+  return report;
+}
+
+}  // namespace freeform_inspection_ros

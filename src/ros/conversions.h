@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <string>
+
+#include <sensor_msgs/PointCloud2.h>
+#include <visualization_msgs/Marker.h>
+
+#include "freeform_inspection/model.h"
+#include "freeform_inspection/pipeline.h"
+#include <freeform_inspection/InspectionReport.h>
+
+/// The only place where ROS messages meet core types.
+namespace freeform_inspection_ros {
+
+namespace fi = freeform_inspection;
+
+/// A PointCloud2 read into a scan, or the reason it could not be read.
+struct CloudConversion {
+  fi::Status status;  ///< kInvalidInput for inconsistent sizes or missing/odd x, y, z fields
+  fi::Scan scan;      ///< every point as stored, NaN included (the pipeline removes and counts)
+};
+
+/// @brief Upper-case machine-readable name of a status code, e.g. "INVALID_INPUT".
+std::string errorCode(fi::StatusCode code);
+
+/// @brief Reads x, y, z by field name (FLOAT32 or FLOAT64), organized or not, after checking that
+/// width, height, point_step, row_step and the data size agree. Other fields are ignored.
+CloudConversion cloudToScan(const sensor_msgs::PointCloud2& cloud);
+
+/// @brief The CAD mesh as a TRIANGLE_LIST marker in `frame` (published once, latched).
+visualization_msgs::Marker modelMarker(const fi::Model& model, const std::string& frame);
+
+/// @brief A report for a request refused before the pipeline ran (no model, no scan, ...).
+freeform_inspection::InspectionReport errorReport(const std::string& error_code,
+                                                  const std::string& message);
+
+/// @brief The pipeline's result as a report message. The transform is the part pose in the scan
+/// frame: parent = `scan_frame`, child = `part_frame`, value = inverse(T_cad_scan).
+freeform_inspection::InspectionReport toReport(const fi::InspectionResult& result,
+                                               const std_msgs::Header& scan_header,
+                                               const std::string& part_frame);
+
+}  // namespace freeform_inspection_ros

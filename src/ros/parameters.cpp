@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "parameters.h"
+
+#include <set>
+
+#include <ros/package.h>
+#include <ros/param.h>
+
+#include "freeform_inspection/config_fields.h"
+#include "freeform_inspection/model.h"
+
+namespace freeform_inspection_ros {
+namespace {
+
+namespace fi = freeform_inspection;
+
+const std::vector<std::string> kNodeKeys = {"model", "model_units", "model_id", "part_frame"};
+
+struct ReadParam {
+  const ros::NodeHandle& pnh;
+  const std::string& key;
+  std::vector<std::string>* errors;
+
+  void operator()(double* target) const { pnh.param(key, *target, *target); }
+  void operator()(bool* target) const { pnh.param(key, *target, *target); }
+  void operator()(std::size_t* target) const {
+    int value = static_cast<int>(*target);
+    pnh.param(key, value, value);
+    if (value < 0) {
+      errors->push_back("~" + key + " must not be negative");
+      return;
+    }
+    *target = static_cast<std::size_t>(value);
+  }
+};
+
+void warnUnknownKeys(const ros::NodeHandle& pnh,
+                     const std::set<std::string>& known,
+                     std::vector<std::string>* warnings) {
+  std::vector<std::string> names;
+  ros::param::getParamNames(names);
+  const std::string prefix = pnh.getNamespace() + "/";
+  for (const auto& name : names) {
+    if (name.rfind(prefix, 0) == 0 && known.count(name.substr(prefix.size())) == 0) {
+      warnings->push_back("unknown parameter '" + name + "' is ignored (misspelt?)");
+    }
+  }
+}
+
+}  // namespace
+
+NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
+  NodeConfigResult result;
+  NodeConfig& config = result.config;
+  pnh.param("model", config.model, config.model);
+  pnh.param("model_units", config.model_units, config.model_units);
+  pnh.param("model_id", config.model_id, config.model_id);
+  pnh.param("part_frame", config.part_frame, config.part_frame);
+  std::set<std::string> known(kNodeKeys.begin(), kNodeKeys.end());
+  for (const auto& field : fi::configFields(config.pipeline)) {
+    std::visit(ReadParam{pnh, field.key, &result.errors}, field.target);
+    known.insert(field.key);
+  }
+  if (!config.model.empty() && !fi::unitScale(config.model_units)) {
+    result.errors.push_back("~model_units must be 'm', 'mm' or 'in' (got '" + config.model_units +
+                            "'): CAD units are never guessed");
+  }
+  if (config.part_frame.empty()) {
+    result.errors.push_back("~part_frame must not be empty");
+  }
+  for (const auto& error : fi::validate(config.pipeline)) {
+    result.errors.push_back(error);
+  }
+  warnUnknownKeys(pnh, known, &result.warnings);
+  return result;
+}
+
+std::string resolveModelPath(const std::string& uri) {
+  const std::string package_scheme = "package://";
+  const std::string file_scheme = "file://";
+  if (uri.rfind(file_scheme, 0) == 0) {
+    return uri.substr(file_scheme.size());
+  }
+  if (uri.rfind(package_scheme, 0) != 0) {
+    return uri;
+  }
+  const std::string rest = uri.substr(package_scheme.size());
+  const std::size_t slash = rest.find('/');
+  const std::string package = rest.substr(0, slash);
+  const std::string package_path = ros::package::getPath(package);
+  if (package_path.empty()) {
+    return "";
+  }
+  return slash == std::string::npos ? package_path : package_path + rest.substr(slash);
+}
+
+}  // namespace freeform_inspection_ros

@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <ros/node_handle.h>
+
+#include "freeform_inspection/pipeline.h"
+
+namespace freeform_inspection_ros {
+
+/// Node-level settings (the pipeline's own settings are in `pipeline`).
+struct NodeConfig {
+  std::string model;                 ///< CAD file path or package:// URL; empty = none at start
+  std::string model_units;           ///< "m", "mm" or "in"; required when `model` is set
+  std::string model_id = "default";  ///< name of the start-up model in Inspect requests
+  std::string part_frame = "part";   ///< tf child frame of the part pose and of the CAD marker
+  freeform_inspection::PipelineConfig pipeline;  ///< ~input/*, ~tolerance/*
+};
+
+/// Parameters read once at start-up.
+struct NodeConfigResult {
+  NodeConfig config;
+  std::vector<std::string> errors;    ///< fatal: the node refuses to start
+  std::vector<std::string> warnings;  ///< e.g. unknown private parameters (likely misspelt)
+};
+
+/// @brief The only parameter reader: every private parameter, once, validated.
+NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh);
+
+/// @brief Resolves "package://pkg/path" and "file:///path" to a file path; other text is
+/// returned unchanged. An unknown package resolves to "".
+std::string resolveModelPath(const std::string& uri);
+
+}  // namespace freeform_inspection_ros

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace freeform_inspection {
+
+/// Command line of freeform_inspect (design.md §5). Lengths are metres after scaling.
+struct CliOptions {
+  std::string cad_path;             ///< --cad
+  std::string scan_path;            ///< --scan
+  double cad_scale = 1.0;           ///< --cad-scale [m per file unit]
+  double scan_scale = 1.0;          ///< --scan-scale [m per file unit]
+  std::optional<double> tolerance;  ///< --tolerance [m], symmetric band ±T
+  std::string config_path;          ///< --config FILE.yaml
+  std::string report_path;          ///< --report OUT.json
+  std::string deviation_path;       ///< --deviation OUT.ply
+  bool help = false;                ///< --help
+};
+
+/// Parsed command line, or the one-line reason it could not be parsed.
+struct CliParseResult {
+  std::optional<CliOptions> options;
+  std::string error;
+};
+
+/// @brief Parses argv (without the program name).
+CliParseResult parseCliOptions(const std::vector<std::string>& args);
+
+/// @brief The usage text printed by --help.
+std::string cliUsage();
+
+}  // namespace freeform_inspection

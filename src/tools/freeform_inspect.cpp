@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+//
+// freeform_inspect: the offline inspection job on files, the same pipeline as the node.
+#include <chrono>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli_options.h"
+#include "report_json.h"
+
+#include "freeform_inspection/config_yaml.h"
+#include "freeform_inspection/io.h"
+#include "freeform_inspection/model.h"
+#include "freeform_inspection/pipeline.h"
+
+namespace fi = freeform_inspection;
+
+namespace {
+
+constexpr int kExitRan = 0;
+constexpr int kExitBadInput = 2;
+
+// The one line on stderr for a refusal.
+int refuse(const std::string& reason) {
+  std::cerr << "freeform_inspect: " << reason << "\n";
+  return kExitBadInput;
+}
+
+bool isInputProblem(fi::StatusCode code) {
+  return code == fi::StatusCode::kInvalidInput || code == fi::StatusCode::kDegenerateInput ||
+         code == fi::StatusCode::kUnitsMismatch;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Reads the YAML configuration (or the defaults) and applies --tolerance.
+fi::ConfigLoadResult configure(const fi::CliOptions& options) {
+  fi::ConfigLoadResult loaded;
+  if (!options.config_path.empty()) {
+    loaded = fi::loadPipelineConfigFile(options.config_path);
+  }
+  if (options.tolerance) {
+    loaded.config.tolerance.upper = *options.tolerance;
+    loaded.config.tolerance.lower = -*options.tolerance;
+  }
+  return loaded;
+}
+
+// Prints the report and writes the requested files; returns false if a write failed.
+bool emit(const fi::CliOptions& options, const nlohmann::json& report) {
+  std::cout << report.dump(2) << std::endl;
+  if (options.report_path.empty()) {
+    return true;
+  }
+  std::ofstream file(options.report_path);
+  file << report.dump(2) << "\n";
+  return static_cast<bool>(file);
+}
+
+int run(const fi::CliOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const fi::ConfigLoadResult config = configure(options);
+  if (!config.status.ok()) {
+    return refuse(config.status.message);
+  }
+  const fi::ModelLoadResult model = fi::loadModel(options.cad_path, options.cad_scale, "cad");
+  if (!model.status.ok()) {
+    return refuse(model.status.message);
+  }
+  const fi::ScanLoadResult scan = fi::loadScan(options.scan_path, options.scan_scale);
+  if (!scan.status.ok()) {
+    return refuse(scan.status.message);
+  }
+  const double load_seconds = secondsSince(start);
+  fi::InspectionResult result = fi::inspect(*model.model, scan.scan, config.config);
+  result.counts.non_finite += scan.non_finite_removed;
+  result.warnings.insert(result.warnings.begin(), model.warnings.begin(), model.warnings.end());
+  result.warnings.insert(result.warnings.end(), scan.warnings.begin(), scan.warnings.end());
+  if (!options.deviation_path.empty() && result.verdict == fi::Verdict::kNotEvaluated) {
+    result.warnings.push_back("deviation file '" + options.deviation_path +
+                              "' not written: the scan was not evaluated");
+  }
+  result.timings.insert(result.timings.begin(), {"load", load_seconds});
+  result.timings.back().seconds = secondsSince(start);  // "total" covers loading too
+  if (!emit(options, fi::toJson(result))) {
+    return refuse("cannot write report '" + options.report_path + "'");
+  }
+  if (isInputProblem(result.status.code)) {
+    return refuse(result.status.message);
+  }
+  return kExitRan;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const fi::CliParseResult parsed =
+      fi::parseCliOptions(std::vector<std::string>(argv + 1, argv + argc));
+  if (!parsed.options) {
+    return refuse(parsed.error);
+  }
+  if (parsed.options->help) {
+    std::cout << fi::cliUsage();
+    return kExitRan;
+  }
+  try {
+    return run(*parsed.options);
+  } catch (const std::exception& e) {
+    return refuse(std::string("internal error: ") + e.what());
+  }
+}

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+//
+// The CLI contract of design.md §5: JSON on stdout, exit 0 when it ran, exit 2 with one line on
+// stderr for bad input or usage.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#ifndef FREEFORM_CLI_PATH
+#error "FREEFORM_CLI_PATH must name the freeform_inspect executable"
+#endif
+#ifndef FREEFORM_DATA_DIR
+#error "FREEFORM_DATA_DIR must name the package's data directory"
+#endif
+
+namespace {
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string temp(const std::string& name) {
+  return (std::filesystem::path(::testing::TempDir()) / ("cli_test_" + name)).string();
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+CliRun runCli(const std::string& args) {
+  const std::string err_path = temp("stderr.txt");
+  const std::string command = std::string(FREEFORM_CLI_PATH) + " " + args + " 2>" + err_path;
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) {
+    run.out.append(buffer, n);
+  }
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  run.err = slurp(err_path);
+  return run;
+}
+
+const std::string kBlade = std::string(FREEFORM_DATA_DIR) + "/blade/blade.stl";
+const std::string kScan = std::string(FREEFORM_DATA_DIR) + "/blade/blade_scan.ply";
+
+int lineCount(const std::string& text) {
+  int lines = 0;
+  for (char c : text) {
+    lines += c == '\n' ? 1 : 0;
+  }
+  return lines;
+}
+
+TEST(Cli, HelpExitsZeroAndShowsTheContract) {
+  const CliRun run = runCli("--help");
+  EXPECT_EQ(run.exit_code, 0);
+  EXPECT_NE(run.out.find("--cad-scale"), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsExitTwoWithOneLineOnStderr) {
+  for (const std::string args : {"",
+                                 "--cad",
+                                 "--cad a.stl",
+                                 "--cad a.stl --scan b.ply --bogus 1",
+                                 "--cad a.stl --scan b.ply --cad-scale -1",
+                                 "--cad a.stl --scan b.ply --tolerance abc"}) {
+    const CliRun run = runCli(args);
+    EXPECT_EQ(run.exit_code, 2) << args;
+    EXPECT_EQ(lineCount(run.err), 1) << args << ": " << run.err;
+    EXPECT_TRUE(run.out.empty()) << args;
+  }
+}
+
+TEST(Cli, MissingCadExitsTwoNamingTheFile) {
+  const CliRun run = runCli("--cad /nonexistent/cad.stl --scan " + kScan);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(lineCount(run.err), 1);
+  EXPECT_NE(run.err.find("/nonexistent/cad.stl"), std::string::npos) << run.err;
+}
+
+TEST(Cli, SampleRunPrintsTheJsonContractAndWritesTheReport) {
+  const std::string report = temp("report.json");
+  const CliRun run = runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan +
+                            " --tolerance 0.0002 --report " + report);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  for (const char* key : {"status",
+                          "message",
+                          "transform_cad_from_scan",
+                          "rmse",
+                          "fitness",
+                          "verdict",
+                          "deviation",
+                          "defects",
+                          "counts",
+                          "timings_s"}) {
+    EXPECT_TRUE(json.contains(key)) << key;
+  }
+  EXPECT_EQ(json["status"], "failed");
+  EXPECT_EQ(json["error_code"], "not_implemented");
+  EXPECT_EQ(json["verdict"], "NOT_EVALUATED");
+  EXPECT_GT(json["counts"]["scan_points"].get<int>(), 10000);
+  EXPECT_GT(json["counts"]["cad_vertices"].get<int>(), 5000);
+  EXPECT_EQ(json["transform_cad_from_scan"].size(), 4u);
+  EXPECT_TRUE(json["timings_s"].contains("total"));
+  EXPECT_EQ(nlohmann::json::parse(slurp(report)), json) << "--report must hold the same JSON";
+}
+
+TEST(Cli, ScanInWrongUnitsExitsTwoNamingUnitsAndStillPrintsTheJson) {
+  const CliRun run =
+      runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan + " --scan-scale 1000");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(lineCount(run.err), 1);
+  EXPECT_NE(run.err.find("units"), std::string::npos) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["error_code"], "units_mismatch");
+}
+
+TEST(Cli, InvalidConfigExitsTwoNamingTheKey) {
+  const std::string config = temp("bad.yaml");
+  std::ofstream(config) << "tolerance:\n  uper: 0.001\n";
+  const CliRun run = runCli("--cad " + kBlade + " --scan " + kScan + " --config " + config);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("tolerance/uper"), std::string::npos) << run.err;
+}
+
+}  // namespace
