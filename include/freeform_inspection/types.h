@@ -30,6 +30,9 @@ enum class StatusCode {
 /// Short stable name of a status code ("ok", "invalid_input", ...), for logs and JSON.
 const char* toString(StatusCode code);
 
+/// Messages joined with "; " into one line (for one-line errors that list several causes).
+std::string joinMessages(const std::vector<std::string>& messages);
+
 /// A status code plus a message that names the offending quantity and its value.
 struct Status {
   StatusCode code = StatusCode::kOk;  ///< kOk when the stage succeeded

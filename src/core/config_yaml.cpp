@@ -43,14 +43,6 @@ struct Assign {
   }
 };
 
-std::string joined(const std::vector<std::string>& errors) {
-  std::string text;
-  for (const auto& e : errors) {
-    text += (text.empty() ? "" : "; ") + e;
-  }
-  return text;
-}
-
 }  // namespace
 
 ConfigLoadResult parsePipelineConfig(const std::string& yaml_text) {
@@ -87,7 +79,7 @@ ConfigLoadResult parsePipelineConfig(const std::string& yaml_text) {
     errors.push_back(e);
   }
   if (!errors.empty()) {
-    result.status = Status::failure(StatusCode::kInvalidInput, joined(errors));
+    result.status = Status::failure(StatusCode::kInvalidInput, joinMessages(errors));
   }
   return result;
 }

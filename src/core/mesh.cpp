@@ -52,26 +52,6 @@ bool isDegenerate(const Eigen::Vector3i& f, const Points& v) {
 
 }  // namespace
 
-const char* toString(StatusCode code) {
-  switch (code) {
-    case StatusCode::kOk:
-      return "ok";
-    case StatusCode::kInvalidInput:
-      return "invalid_input";
-    case StatusCode::kDegenerateInput:
-      return "degenerate_input";
-    case StatusCode::kUnitsMismatch:
-      return "units_mismatch";
-    case StatusCode::kNotConverged:
-      return "not_converged";
-    case StatusCode::kAmbiguous:
-      return "ambiguous";
-    case StatusCode::kNotImplemented:
-      return "not_implemented";
-  }
-  return "unknown";
-}
-
 BoundingBox computeBoundingBox(const Points& points) {
   BoundingBox box;
   if (points.empty()) {

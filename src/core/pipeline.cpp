@@ -15,14 +15,6 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-std::string joinLines(const std::vector<std::string>& lines) {
-  std::string joined;
-  for (const auto& line : lines) {
-    joined += (joined.empty() ? "" : "; ") + line;
-  }
-  return joined;
-}
-
 }  // namespace
 
 const char* toString(RegistrationStatus status) {
@@ -76,7 +68,7 @@ std::vector<std::string> validate(const PipelineConfig& config) {
 InspectionResult inspect(const Model& model, const Scan& scan, const PipelineConfig& config) {
   const auto errors = validate(config);
   if (!errors.empty()) {
-    throw std::invalid_argument("invalid pipeline configuration: " + joinLines(errors));
+    throw std::invalid_argument("invalid pipeline configuration: " + joinMessages(errors));
   }
   const auto start = Clock::now();
   InspectionResult result;

@@ -53,7 +53,7 @@ fi::ConfigLoadResult configure(const fi::CliOptions& options) {
 }
 
 // Prints the report and writes the requested files; returns false if a write failed.
-bool emit(const fi::CliOptions& options, const nlohmann::json& report) {
+bool emit(const fi::CliOptions& options, const nlohmann::ordered_json& report) {
   std::cout << report.dump(2) << std::endl;
   if (options.report_path.empty()) {
     return true;

@@ -7,8 +7,8 @@
 namespace freeform_inspection {
 namespace {
 
-nlohmann::json matrixRows(const Eigen::Isometry3d& transform) {
-  nlohmann::json rows = nlohmann::json::array();
+nlohmann::ordered_json matrixRows(const Eigen::Isometry3d& transform) {
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (int r = 0; r < 4; ++r) {
     rows.push_back({transform(r, 0), transform(r, 1), transform(r, 2), transform(r, 3)});
   }
@@ -16,11 +16,30 @@ nlohmann::json matrixRows(const Eigen::Isometry3d& transform) {
 }
 
 // JSON has no NaN: an unknown number is null.
-nlohmann::json numberOrNull(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+nlohmann::ordered_json numberOrNull(double value) {
+  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
 }
 
-nlohmann::json deviationJson(const DeviationStatistics& d) {
+nlohmann::ordered_json deviationJson(const DeviationStatistics& d) {
+  if (d.evaluated == 0) {
+    // Nothing was measured: null, not zeros that read like a perfect part.
+    nlohmann::ordered_json none;
+    for (const char* key : {"mean",
+                            "std",
+                            "rms",
+                            "min",
+                            "max",
+                            "p5",
+                            "p50",
+                            "p95",
+                            "in_tolerance_fraction",
+                            "coverage"}) {
+      none[key] = nullptr;
+    }
+    none["evaluated"] = 0;
+    none["unmatched"] = d.unmatched;
+    return none;
+  }
   return {{"mean", d.mean},
           {"std", d.std},
           {"rms", d.rms},
@@ -35,8 +54,8 @@ nlohmann::json deviationJson(const DeviationStatistics& d) {
           {"unmatched", d.unmatched}};
 }
 
-nlohmann::json defectsJson(const std::vector<DefectRegion>& defects) {
-  nlohmann::json list = nlohmann::json::array();
+nlohmann::ordered_json defectsJson(const std::vector<DefectRegion>& defects) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const auto& d : defects) {
     list.push_back({{"centroid", {d.centroid.x(), d.centroid.y(), d.centroid.z()}},
                     {"points", d.points},
@@ -46,7 +65,7 @@ nlohmann::json defectsJson(const std::vector<DefectRegion>& defects) {
   return list;
 }
 
-nlohmann::json countsJson(const InspectionCounts& c) {
+nlohmann::ordered_json countsJson(const InspectionCounts& c) {
   return {{"scan_points", c.scan_points},
           {"non_finite", c.non_finite},
           {"cad_vertices", c.cad_vertices},
@@ -57,13 +76,13 @@ nlohmann::json countsJson(const InspectionCounts& c) {
 
 }  // namespace
 
-nlohmann::json toJson(const InspectionResult& result) {
-  nlohmann::json json;
+nlohmann::ordered_json toJson(const InspectionResult& result) {
+  nlohmann::ordered_json json;
   json["status"] = toString(result.registration);
   json["message"] = result.status.ok() ? "" : result.status.message;
   json["error_code"] = toString(result.status.code);
   json["transform_cad_from_scan"] = matrixRows(result.T_cad_scan);
-  json["alternatives"] = nlohmann::json::array();
+  json["alternatives"] = nlohmann::ordered_json::array();
   for (const auto& alternative : result.alternatives) {
     json["alternatives"].push_back(matrixRows(alternative));
   }
@@ -73,7 +92,7 @@ nlohmann::json toJson(const InspectionResult& result) {
   json["deviation"] = deviationJson(result.deviation);
   json["defects"] = defectsJson(result.defects);
   json["counts"] = countsJson(result.counts);
-  json["timings_s"] = nlohmann::json::object();
+  json["timings_s"] = nlohmann::ordered_json::object();
   for (const auto& timing : result.timings) {
     json["timings_s"][timing.stage] = timing.seconds;
   }

@@ -9,6 +9,6 @@
 namespace freeform_inspection {
 
 /// @brief The CLI's JSON report (design.md §5 contract: field names keep their meaning).
-nlohmann::json toJson(const InspectionResult& result);
+nlohmann::ordered_json toJson(const InspectionResult& result);
 
 }  // namespace freeform_inspection

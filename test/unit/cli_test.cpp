@@ -118,6 +118,8 @@ TEST(Cli, SampleRunPrintsTheJsonContractAndWritesTheReport) {
   EXPECT_GT(json["counts"]["cad_vertices"].get<int>(), 5000);
   EXPECT_EQ(json["transform_cad_from_scan"].size(), 4u);
   EXPECT_TRUE(json["timings_s"].contains("total"));
+  EXPECT_TRUE(json["deviation"]["rms"].is_null()) << "nothing measured must not read as zero";
+  EXPECT_TRUE(json["rmse"].is_null());
   EXPECT_EQ(nlohmann::json::parse(slurp(report)), json) << "--report must hold the same JSON";
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "test_shapes.h"
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -73,22 +74,10 @@ void put(std::string* out, T value, bool big_endian = false) {
 
 /// Cube [0, size]^3, 8 vertices, 12 triangles wound outward.
 inline TriangleMesh makeCube(double size) {
-  TriangleMesh mesh;
-  for (int i = 0; i < 8; ++i) {
-    mesh.vertices.emplace_back(i & 1 ? size : 0.0, i & 2 ? size : 0.0, i & 4 ? size : 0.0);
+  TriangleMesh mesh = test::makeBox(Eigen::Vector3d::Constant(size / 2));
+  for (auto& v : mesh.vertices) {
+    v += Eigen::Vector3d::Constant(size / 2);
   }
-  mesh.faces = {{0, 2, 1},
-                {1, 2, 3},
-                {4, 5, 6},
-                {5, 7, 6},
-                {0, 1, 4},
-                {1, 5, 4},
-                {2, 6, 3},
-                {3, 6, 7},
-                {0, 4, 2},
-                {2, 4, 6},
-                {1, 3, 5},
-                {3, 7, 5}};
   mesh.face_normals = computeFaceNormals(mesh.vertices, mesh.faces);
   return mesh;
 }

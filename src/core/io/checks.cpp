@@ -39,5 +39,10 @@ Status checkFaceIndices(const std::string& path, const TriangleMesh& mesh) {
   return Status::success();
 }
 
+Status checkMeshForWriting(const std::string& path, const TriangleMesh& mesh, double scale) {
+  const Status status = checkScale(scale);
+  return status.ok() ? checkFaceIndices(path, mesh) : status;
+}
+
 }  // namespace io_internal
 }  // namespace freeform_inspection

@@ -21,5 +21,8 @@ Status checkScale(double scale);
 /// kInvalidInput unless every face index lies within the vertices (before writing a mesh).
 Status checkFaceIndices(const std::string& path, const TriangleMesh& mesh);
 
+/// The checks every mesh writer makes first: a valid scale, then valid face indices.
+Status checkMeshForWriting(const std::string& path, const TriangleMesh& mesh, double scale);
+
 }  // namespace io_internal
 }  // namespace freeform_inspection

@@ -89,10 +89,7 @@ std::string pointBody(const Points& points, const Points& normals, bool binary) 
 
 Status saveMeshPly(const std::string& path, const TriangleMesh& mesh, double scale) {
   try {
-    Status status = io_internal::checkScale(scale);
-    if (status.ok()) {
-      status = io_internal::checkFaceIndices(path, mesh);
-    }
+    const Status status = io_internal::checkMeshForWriting(path, mesh, scale);
     if (!status.ok()) {
       return status;
     }

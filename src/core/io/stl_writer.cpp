@@ -29,10 +29,7 @@ void appendVector(std::string* out, const Eigen::Vector3d& v) {
 
 Status saveMeshStl(const std::string& path, const TriangleMesh& mesh, double scale) {
   try {
-    Status status = io_internal::checkScale(scale);
-    if (status.ok()) {
-      status = io_internal::checkFaceIndices(path, mesh);
-    }
+    const Status status = io_internal::checkMeshForWriting(path, mesh, scale);
     if (!status.ok()) {
       return status;
     }
