@@ -19,7 +19,7 @@ namespace freeform_inspection {
 /// A named, writable field of a PipelineConfig.
 struct ConfigField {
   std::string key;  ///< "<section>/<name>", as nested in config/default.yaml
-  std::variant<double*, std::size_t*, bool*> target;  ///< where the value goes
+  std::variant<double*, std::size_t*, int*, bool*> target;  ///< where the value goes
 };
 
 /// @brief The fields of `config`, pointing into it. The pointers live as long as `config`.

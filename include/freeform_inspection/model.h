@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "freeform_inspection/descriptor.h"
 #include "freeform_inspection/mesh.h"
 #include "freeform_inspection/types.h"
 
@@ -20,17 +21,27 @@ namespace freeform_inspection {
 /// @return nothing for any other name (units are never guessed).
 std::optional<double> unitScale(const std::string& units);
 
-/// A loaded CAD model. Immutable once built.
+/// A loaded CAD model and everything computed once about it (descriptors at the kernel radii
+/// derived from its size). Immutable once built; share it between inspections.
 class Model {
  public:
-  /// @brief Takes a mesh already in metres. Use loadModel() to read one from a file.
-  Model(TriangleMesh mesh, std::string id, std::string source);
+  /// @brief Takes a mesh already in metres and computes its descriptors. Use loadModel() to read
+  /// one from a file.
+  Model(TriangleMesh mesh,
+        std::string id,
+        std::string source,
+        const DescriptorConfig& descriptor_config = DescriptorConfig());
 
   const TriangleMesh& mesh() const { return mesh_; }
   const BoundingBox& bounds() const { return bounds_; }
   const MeshTopology& topology() const { return topology_; }
   const std::string& id() const { return id_; }
   const std::string& source() const { return source_; }  ///< file it was loaded from
+  /// Descriptors of the CAD vertices; their radii are the ones to use on every scan.
+  const DescriptorResult& descriptors() const { return descriptors_; }
+  /// Hash of the mesh and the descriptor settings: the key under which the descriptors may be
+  /// cached (the same file content and configuration give the same key).
+  const std::string& descriptorKey() const { return descriptor_key_; }
 
  private:
   TriangleMesh mesh_;
@@ -38,6 +49,8 @@ class Model {
   MeshTopology topology_;
   std::string id_;
   std::string source_;
+  DescriptorResult descriptors_;
+  std::string descriptor_key_;
 };
 
 /// Result of loading a model.
@@ -48,8 +61,12 @@ struct ModelLoadResult {
 };
 
 /// @brief Loads a CAD file (STL, PLY, OBJ) with an explicit unit scale and checks it is usable:
-/// at least one face, a non-zero extent. Open or non-manifold meshes load with a warning.
+/// at least one face, a non-zero extent, descriptors computable. Open or non-manifold meshes
+/// load with a warning.
 /// @param scale [m per file unit], e.g. from unitScale("mm").
-ModelLoadResult loadModel(const std::string& path, double scale, const std::string& id);
+ModelLoadResult loadModel(const std::string& path,
+                          double scale,
+                          const std::string& id,
+                          const DescriptorConfig& descriptor_config = DescriptorConfig());
 
 }  // namespace freeform_inspection

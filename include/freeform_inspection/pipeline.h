@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "freeform_inspection/descriptor.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/scan_cleaning.h"
 #include "freeform_inspection/types.h"
@@ -29,6 +30,7 @@ struct ToleranceConfig {
 /// Configuration of the whole pipeline, nested like config/default.yaml.
 struct PipelineConfig {
   InputConfig input;
+  DescriptorConfig descriptor;
   ToleranceConfig tolerance;
 };
 

@@ -2,6 +2,7 @@
 // Copyright 2026 The freeform_inspection authors
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>

@@ -10,6 +10,11 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"input/min_points", &config.input.min_points},
       {"input/max_extent_ratio", &config.input.max_extent_ratio},
       {"input/min_thickness_ratio", &config.input.min_thickness_ratio},
+      {"descriptor/scales", &config.descriptor.scales},
+      {"descriptor/max_radius_ratio", &config.descriptor.max_radius_ratio},
+      {"descriptor/cell_ratio", &config.descriptor.cell_ratio},
+      {"descriptor/cloud_edge_neighbours", &config.descriptor.cloud_edge_neighbours},
+      {"descriptor/cloud_neighbours", &config.descriptor.cloud_curvature.neighbours},
       {"tolerance/upper", &config.tolerance.upper},
       {"tolerance/lower", &config.tolerance.lower},
   };

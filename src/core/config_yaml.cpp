@@ -34,6 +34,7 @@ struct Assign {
   const YAML::Node& value;
   void operator()(double* target) const { *target = value.as<double>(); }
   void operator()(bool* target) const { *target = value.as<bool>(); }
+  void operator()(int* target) const { *target = value.as<int>(); }
   void operator()(std::size_t* target) const {
     const long long parsed = value.as<long long>();
     if (parsed < 0) {

@@ -2,11 +2,57 @@
 // Copyright 2026 The freeform_inspection authors
 #include "freeform_inspection/model.h"
 
+#include <cstdint>
+#include <cstdio>
 #include <utility>
 
 #include "freeform_inspection/io.h"
 
 namespace freeform_inspection {
+namespace {
+
+// FNV-1a over the bytes of the mesh and the settings that shape the descriptors.
+class Fnv1a {
+ public:
+  template <typename T>
+  void add(const T& value) {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(&value);
+    for (std::size_t i = 0; i < sizeof(T); ++i) {
+      hash_ = (hash_ ^ bytes[i]) * 1099511628211ull;
+    }
+  }
+  std::string hex() const {
+    char text[17];
+    std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash_));
+    return text;
+  }
+
+ private:
+  std::uint64_t hash_ = 1469598103934665603ull;
+};
+
+std::string descriptorCacheKey(const TriangleMesh& mesh, const DescriptorConfig& config) {
+  Fnv1a hash;
+  for (const auto& v : mesh.vertices) {
+    hash.add(v.x());
+    hash.add(v.y());
+    hash.add(v.z());
+  }
+  for (const auto& f : mesh.faces) {
+    hash.add(f[0]);
+    hash.add(f[1]);
+    hash.add(f[2]);
+  }
+  hash.add(config.scales);
+  hash.add(config.max_radius_ratio);
+  hash.add(config.cell_ratio);
+  hash.add(config.cloud_edge_neighbours);
+  hash.add(config.mesh_curvature.method);
+  hash.add(config.cloud_curvature.neighbours);
+  return hash.hex();
+}
+
+}  // namespace
 
 std::optional<double> unitScale(const std::string& units) {
   if (units == "m") {
@@ -21,14 +67,26 @@ std::optional<double> unitScale(const std::string& units) {
   return std::nullopt;
 }
 
-Model::Model(TriangleMesh mesh, std::string id, std::string source)
+Model::Model(TriangleMesh mesh,
+             std::string id,
+             std::string source,
+             const DescriptorConfig& descriptor_config)
     : mesh_(std::move(mesh)),
       bounds_(computeBoundingBox(mesh_.vertices)),
       topology_(analyzeTopology(mesh_)),
       id_(std::move(id)),
-      source_(std::move(source)) {}
+      source_(std::move(source)),
+      descriptors_(computeDescriptors(mesh_.vertices,
+                                      mesh_.faces,
+                                      {},
+                                      kernelRadii(bounds_.diagonal(), descriptor_config),
+                                      descriptor_config)),
+      descriptor_key_(descriptorCacheKey(mesh_, descriptor_config)) {}
 
-ModelLoadResult loadModel(const std::string& path, double scale, const std::string& id) {
+ModelLoadResult loadModel(const std::string& path,
+                          double scale,
+                          const std::string& id,
+                          const DescriptorConfig& descriptor_config) {
   ModelLoadResult result;
   MeshLoadResult loaded = loadMesh(path, scale);
   result.warnings = std::move(loaded.warnings);
@@ -36,10 +94,20 @@ ModelLoadResult loadModel(const std::string& path, double scale, const std::stri
     result.status = loaded.status;
     return result;
   }
-  auto model = std::make_shared<const Model>(std::move(loaded.mesh), id, path);
-  if (model->topology().area <= 0.0 || model->bounds().diagonal() <= 0.0) {
+  if (computeBoundingBox(loaded.mesh.vertices).diagonal() <= 0.0) {
+    result.status =
+        Status::failure(StatusCode::kDegenerateInput, "CAD model '" + path + "' has zero extent");
+    return result;
+  }
+  auto model = std::make_shared<const Model>(std::move(loaded.mesh), id, path, descriptor_config);
+  if (model->topology().area <= 0.0) {
     result.status = Status::failure(StatusCode::kDegenerateInput,
                                     "CAD model '" + path + "' has zero surface area");
+    return result;
+  }
+  if (!model->descriptors().status.ok()) {
+    result.status = model->descriptors().status;
+    result.status.message = "CAD model '" + path + "': " + result.status.message;
     return result;
   }
   const MeshTopology& topology = model->topology();

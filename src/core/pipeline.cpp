@@ -56,6 +56,9 @@ std::vector<std::string> validate(const PipelineConfig& config) {
   if (!(input.min_thickness_ratio >= 0.0 && input.min_thickness_ratio < 1.0)) {
     errors.push_back("input.min_thickness_ratio must be in [0, 1)");
   }
+  for (const auto& error : validate(config.descriptor)) {
+    errors.push_back(error);
+  }
   if (!(config.tolerance.upper > 0.0 && std::isfinite(config.tolerance.upper))) {
     errors.push_back("tolerance.upper must be a finite length > 0 [m]");
   }

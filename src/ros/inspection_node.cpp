@@ -74,7 +74,7 @@ std::string InspectionNode::installModel(const std::string& uri,
   if (path.empty()) {
     return "cannot resolve model URL '" + uri + "'";
   }
-  fi::ModelLoadResult loaded = fi::loadModel(path, *scale, id);
+  fi::ModelLoadResult loaded = fi::loadModel(path, *scale, id, config_.pipeline.descriptor);
   for (const auto& warning : loaded.warnings) {
     ROS_WARN_STREAM(warning);
   }

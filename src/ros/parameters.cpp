@@ -24,6 +24,7 @@ struct ReadParam {
 
   void operator()(double* target) const { pnh.param(key, *target, *target); }
   void operator()(bool* target) const { pnh.param(key, *target, *target); }
+  void operator()(int* target) const { pnh.param(key, *target, *target); }
   void operator()(std::size_t* target) const {
     int value = static_cast<int>(*target);
     pnh.param(key, value, value);

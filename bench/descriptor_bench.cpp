@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+//
+// descriptor_bench: time and peak memory of the multiscale descriptors on the sample blade at a
+// chosen size, as a mesh or as a cloud. One JSON line per run; bench/run_descriptor_bench.sh runs
+// the sizes of docs/benchmarks.md, one process each so peak memory belongs to one size.
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+#include "blade_geometry.h"
+#include <sys/resource.h>
+
+#include "freeform_inspection/descriptor.h"
+#include "freeform_inspection/mesh.h"
+#include "freeform_inspection/surface_sampling.h"
+
+namespace fi = freeform_inspection;
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The blade resampled to about `vertices` vertices, in metres.
+fi::TriangleMesh bladeMesh(double vertices) {
+  fi::tools::BladeParameters parameters;
+  const double factor = std::sqrt(vertices / 7300.0);
+  parameters.chord_stations = static_cast<int>(std::lround(parameters.chord_stations * factor));
+  parameters.airfoil_intervals =
+      static_cast<int>(std::lround(parameters.airfoil_intervals * factor));
+  fi::TriangleMesh mesh = fi::tools::generateBlade(parameters);
+  for (auto& v : mesh.vertices) {
+    v *= 0.001;
+  }
+  mesh.face_normals = fi::computeFaceNormals(mesh.vertices, mesh.faces);
+  return mesh;
+}
+
+long peakMemoryKiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3 || (std::string(argv[1]) != "mesh" && std::string(argv[1]) != "cloud")) {
+    std::cerr << "usage: descriptor_bench mesh|cloud POINTS\n";
+    return 2;
+  }
+  const std::string mode = argv[1];
+  const double size = std::atof(argv[2]);
+  const fi::DescriptorConfig config;
+  const fi::TriangleMesh cad = bladeMesh(7300);
+  const auto radii = fi::kernelRadii(fi::computeBoundingBox(cad.vertices).diagonal(), config);
+  fi::Points points;
+  fi::Triangles faces;
+  if (mode == "mesh") {
+    fi::TriangleMesh mesh = bladeMesh(size);
+    points = std::move(mesh.vertices);
+    faces = std::move(mesh.faces);
+  } else {
+    points = fi::sampleSurface(cad, static_cast<std::size_t>(size), 1).points;
+  }
+  const long memory_before = peakMemoryKiB();
+  const auto start = std::chrono::steady_clock::now();
+  const fi::DescriptorResult result = fi::computeDescriptors(points, faces, {}, radii, config);
+  const double seconds = secondsSince(start);
+  std::cout << "{\"mode\": \"" << mode << "\", \"points\": " << points.size()
+            << ", \"faces\": " << faces.size() << ", \"cells\": " << result.graph.size()
+            << ", \"status\": \"" << fi::toString(result.status.code)
+            << "\", \"seconds\": " << seconds << ", \"peak_rss_mib\": " << peakMemoryKiB() / 1024.0
+            << ", \"rss_before_mib\": " << memory_before / 1024.0 << "}" << std::endl;
+  return result.status.ok() ? 0 : 1;
+}

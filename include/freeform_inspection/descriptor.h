@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "freeform_inspection/curvature.h"
+#include "freeform_inspection/surface_graph.h"
+#include "freeform_inspection/types.h"
+
+/// @file descriptor.h
+/// Multiscale integral volume descriptor (paper §2.3, §3.3):
+///   V_k(p) = 1/2 − (3/16) · H̃_k(p) · r_k                                     (eq. 11)
+/// with H̃_k the geodesically weighted mean curvature over the geodesic ball of radius r_k
+/// (eq. 6–7), r_k = k · r_max / K. The radii come from the CAD model (r_max = 0.1 · L_max, L_max
+/// its bounding-box diagonal) and the same absolute radii are used on the scan, so a partial
+/// scan gets the same descriptor as the full part.
+
+namespace freeform_inspection {
+
+/// Descriptor settings (paper defaults).
+struct DescriptorConfig {
+  int scales = 6;                      ///< K, number of kernel radii (paper: 6)
+  double max_radius_ratio = 0.1;       ///< r_max / L_max, L_max = CAD bounding-box diagonal (paper)
+  double cell_ratio = 0.4;             ///< surface-graph cell size / r_1: resolution of the balls
+  int cloud_edge_neighbours = 8;       ///< clouds: kNN surface edges per point
+  MeshCurvatureConfig mesh_curvature;  ///< one-ring curvature on meshes
+  CloudCurvatureConfig cloud_curvature;  ///< local-quadric curvature on clouds
+};
+
+/// @brief Checks the settings; one message per bad field, empty when valid.
+std::vector<std::string> validate(const DescriptorConfig& config);
+
+/// @brief r_k = k · r_max / K for k = 1..K, r_max = max_radius_ratio · `cad_diagonal` [m].
+std::vector<double> kernelRadii(double cad_diagonal, const DescriptorConfig& config);
+
+/// Descriptors of one surface (the CAD or a scan).
+struct DescriptorResult {
+  Status status;                   ///< kDegenerateInput when the surface has no usable area
+  std::vector<double> radii;       ///< [m] r_k
+  CurvatureResult curvature;       ///< one-ring (mesh) or local-quadric (cloud) curvature
+  SurfaceGraph graph;              ///< cells on which the balls were grown
+  Eigen::MatrixXd cell_values;     ///< cells × K: V_k of every cell
+  Eigen::MatrixXd cell_curvature;  ///< cells × K: H̃_k of every cell [1/m]
+  std::vector<std::string> warnings;
+
+  /// V_k of point i: the value of its cell (NaN for a point without area).
+  double value(std::size_t point, int scale) const;
+};
+
+/// @brief Computes V_k for every point of a mesh (faces non-empty) or a cloud (faces empty).
+/// @param normals optional (empty or one per point): scanner normals for clouds.
+/// @param radii kernel radii from kernelRadii() of the CAD model.
+DescriptorResult computeDescriptors(const Points& points,
+                                    const Triangles& faces,
+                                    const Points& normals,
+                                    const std::vector<double>& radii,
+                                    const DescriptorConfig& config);
+
+}  // namespace freeform_inspection

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "freeform_inspection/types.h"
+
+/// @file point_index.h
+/// Nearest-neighbour queries on a fixed point set (a kd-tree; nanoflann behind the curtain).
+
+namespace freeform_inspection {
+
+/// One neighbour: its index in the indexed set and its squared distance.
+struct Neighbour {
+  int index = -1;                 ///< index into the points the index was built on
+  double squared_distance = 0.0;  ///< [m^2]
+};
+
+/// A kd-tree over a point set. The points are copied; queries are thread-safe.
+class PointIndex {
+ public:
+  explicit PointIndex(const Points& points);
+  ~PointIndex();
+  PointIndex(const PointIndex&) = delete;
+  PointIndex& operator=(const PointIndex&) = delete;
+
+  /// The k nearest points (fewer if the set is smaller), nearest first; includes the query
+  /// point itself when it is in the set.
+  std::vector<Neighbour> nearest(const Eigen::Vector3d& query, int k) const;
+
+  /// All points within `radius` [m], nearest first.
+  std::vector<Neighbour> within(const Eigen::Vector3d& query, double radius) const;
+
+  std::size_t size() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace freeform_inspection

@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "freeform_inspection/descriptor.h"
+
+#include <cmath>
+#include <limits>
+
+#include "freeform_inspection/geodesic.h"
+#include "freeform_inspection/mesh_adjacency.h"
+
+namespace freeform_inspection {
+namespace {
+
+CurvatureResult pointCurvature(const Points& points,
+                               const Triangles& faces,
+                               const Points& normals,
+                               const DescriptorConfig& config) {
+  if (faces.empty()) {
+    return computeCloudCurvature(points, normals, config.cloud_curvature);
+  }
+  const MeshAdjacency adjacency = buildMeshAdjacency(faces, points.size());
+  return computeMeshCurvature(points, faces, adjacency, config.mesh_curvature);
+}
+
+// eq. 6–7: H̃_k = Σ w_j a_j H_j / Σ w_j a_j over the ball of radius r_k, w_j = exp(−g_j / g_max),
+// g_max the largest geodesic distance inside that ball. The paper's eq. 6 sums w_j·H_j
+// unnormalised; we normalise (a weighted mean, so a plane gives exactly 0 whatever the sampling)
+// and weight by the area each cell stands for (an integral, so uneven sampling does not bias).
+// Summing a_j·H_j (the integrated curvature of each cell) also cancels the bias the paper's A/3
+// vertex area gives eq. 3 at irregular vertices: Σ a_j H_j / Σ a_j is the total mean curvature
+// of the ball over its area.
+void averageOverBall(const SurfaceGraph& graph,
+                     const std::vector<BallMember>& ball,
+                     const std::vector<double>& radii,
+                     Eigen::RowVectorXd* out) {
+  std::size_t end = 0;
+  for (std::size_t k = 0; k < radii.size(); ++k) {
+    while (end < ball.size() && ball[end].distance <= radii[k]) {
+      ++end;
+    }
+    const double g_max = ball[end - 1].distance;
+    double weighted = 0.0;
+    double weights = 0.0;
+    for (std::size_t j = 0; j < end; ++j) {
+      const auto cell = static_cast<std::size_t>(ball[j].cell);
+      const double w = (g_max > 0.0 ? std::exp(-ball[j].distance / g_max) : 1.0) * graph.area[cell];
+      weighted += w * graph.curvature[cell];
+      weights += w;
+    }
+    (*out)[static_cast<Eigen::Index>(k)] = weighted / weights;
+  }
+}
+
+Eigen::MatrixXd multiscaleCurvature(const SurfaceGraph& graph, const std::vector<double>& radii) {
+  Eigen::MatrixXd curvature(static_cast<Eigen::Index>(graph.size()),
+                            static_cast<Eigen::Index>(radii.size()));
+#pragma omp parallel
+  {
+    GeodesicBallGrower grower(graph);  // scratch space per thread
+    Eigen::RowVectorXd row(static_cast<Eigen::Index>(radii.size()));
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t c = 0; c < graph.size(); ++c) {
+      const auto& ball = grower.grow(static_cast<int>(c), radii.back());
+      averageOverBall(graph, ball, radii, &row);
+      curvature.row(static_cast<Eigen::Index>(c)) = row;
+    }
+  }
+  return curvature;
+}
+
+Status checkRadii(const std::vector<double>& radii) {
+  for (std::size_t k = 0; k < radii.size(); ++k) {
+    if (!(radii[k] > 0.0) || !std::isfinite(radii[k]) || (k > 0 && radii[k] <= radii[k - 1])) {
+      return Status::failure(StatusCode::kInvalidInput,
+                             "kernel radii must be finite, positive and increasing");
+    }
+  }
+  return radii.empty() ? Status::failure(StatusCode::kInvalidInput, "no kernel radius given")
+                       : Status::success();
+}
+
+}  // namespace
+
+std::vector<std::string> validate(const DescriptorConfig& config) {
+  std::vector<std::string> errors;
+  if (config.scales < 1) {
+    errors.push_back("descriptor.scales must be at least 1");
+  }
+  if (!(config.max_radius_ratio > 0.0 && config.max_radius_ratio <= 1.0)) {
+    errors.push_back("descriptor.max_radius_ratio must be in (0, 1]");
+  }
+  if (!(config.cell_ratio > 0.0 && config.cell_ratio <= 1.0)) {
+    errors.push_back("descriptor.cell_ratio must be in (0, 1]");
+  }
+  if (config.cloud_edge_neighbours < 3) {
+    errors.push_back("descriptor.cloud_edge_neighbours must be at least 3");
+  }
+  if (config.cloud_curvature.neighbours < 6) {
+    errors.push_back("descriptor.cloud_neighbours must be at least 6 (a quadric has 6 terms)");
+  }
+  return errors;
+}
+
+std::vector<double> kernelRadii(double cad_diagonal, const DescriptorConfig& config) {
+  const double r_max = config.max_radius_ratio * cad_diagonal;
+  std::vector<double> radii;
+  for (int k = 1; k <= config.scales; ++k) {
+    radii.push_back(k * r_max / config.scales);  // r_k = k · r_max / K (paper §3.3)
+  }
+  return radii;
+}
+
+double DescriptorResult::value(std::size_t point, int scale) const {
+  const int cell = graph.point_cell[point];
+  return cell < 0 ? std::numeric_limits<double>::quiet_NaN()
+                  : cell_values(cell, static_cast<Eigen::Index>(scale));
+}
+
+DescriptorResult computeDescriptors(const Points& points,
+                                    const Triangles& faces,
+                                    const Points& normals,
+                                    const std::vector<double>& radii,
+                                    const DescriptorConfig& config) {
+  DescriptorResult result;
+  result.radii = radii;
+  result.status = checkRadii(radii);
+  if (!result.status.ok()) {
+    return result;
+  }
+  result.curvature = pointCurvature(points, faces, normals, config);
+  result.status = result.curvature.status;
+  if (!result.status.ok()) {
+    return result;
+  }
+  const std::vector<SurfaceEdge> edges =
+      faces.empty()
+          ? cloudEdges(
+                points, result.curvature.normals, config.cloud_edge_neighbours, radii.front())
+          : meshEdges(faces);
+  const SurfaceSamples samples{
+      &points, &result.curvature.normals, &result.curvature.area, &result.curvature.mean};
+  result.graph = buildSurfaceGraph(samples, edges, config.cell_ratio * radii.front());
+  if (result.graph.size() == 0) {
+    result.status = Status::failure(StatusCode::kDegenerateInput, "surface has no area");
+    return result;
+  }
+  result.cell_curvature = multiscaleCurvature(result.graph, radii);
+  result.cell_values.resizeLike(result.cell_curvature);
+  for (Eigen::Index k = 0; k < result.cell_values.cols(); ++k) {
+    // eq. 11: V_k = 1/2 − (3/16) · H̃_k · r_k
+    result.cell_values.col(k) = (0.5 - 3.0 / 16.0 * radii[static_cast<std::size_t>(k)] *
+                                           result.cell_curvature.col(k).array())
+                                    .matrix();
+  }
+  return result;
+}
+
+}  // namespace freeform_inspection

@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "freeform_inspection/point_index.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace freeform_inspection {
+namespace {
+
+constexpr unsigned kSeed = 20260101;
+
+Points randomPoints(int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  Points points;
+  for (int i = 0; i < count; ++i) {
+    const double x = coordinate(rng);
+    const double y = coordinate(rng);
+    points.emplace_back(x, y, coordinate(rng));
+  }
+  return points;
+}
+
+// Summed in the order the index documents (x, y, z), so the distances must agree bit for bit.
+double squaredDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    sum += (a[i] - b[i]) * (a[i] - b[i]);
+  }
+  return sum;
+}
+
+// Every point, nearest first, ties by index.
+std::vector<Neighbour> bruteForce(const Points& points, const Eigen::Vector3d& query) {
+  std::vector<Neighbour> all;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    all.push_back({static_cast<int>(i), squaredDistance(query, points[i])});
+  }
+  std::sort(all.begin(), all.end(), [](const Neighbour& a, const Neighbour& b) {
+    return a.squared_distance < b.squared_distance ||
+           (a.squared_distance == b.squared_distance && a.index < b.index);
+  });
+  return all;
+}
+
+std::vector<Neighbour> bruteNearest(const Points& points, const Eigen::Vector3d& query, int k) {
+  std::vector<Neighbour> all = bruteForce(points, query);
+  all.resize(std::min(all.size(), static_cast<std::size_t>(k)));
+  return all;
+}
+
+std::vector<Neighbour> bruteWithin(const Points& points, const Eigen::Vector3d& query, double r) {
+  std::vector<Neighbour> all = bruteForce(points, query);
+  all.erase(
+      std::remove_if(
+          all.begin(), all.end(), [&](const Neighbour& n) { return n.squared_distance > r * r; }),
+      all.end());
+  return all;
+}
+
+void expectSame(const std::vector<Neighbour>& expected,
+                const std::vector<Neighbour>& actual,
+                const std::string& context) {
+  ASSERT_EQ(expected.size(), actual.size()) << context;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(expected[i].index, actual[i].index) << context << " rank " << i;
+    EXPECT_EQ(expected[i].squared_distance, actual[i].squared_distance) << context << " rank " << i;
+  }
+}
+
+// Queries on indexed points (the point itself comes first) and at random places.
+Points queries(const Points& points, unsigned seed) {
+  Points result = randomPoints(50, seed + 1);
+  for (std::size_t i = 0; i < points.size(); i += 97) {
+    result.push_back(points[i]);
+  }
+  return result;
+}
+
+TEST(PointIndex, NearestMatchesBruteForceOnRandomPoints) {
+  const Points points = randomPoints(2000, kSeed);
+  const PointIndex index(points);
+  ASSERT_EQ(index.size(), 2000u);
+  for (const int k : {1, 7, 24, 100}) {
+    for (const auto& query : queries(points, kSeed)) {
+      expectSame(bruteNearest(points, query, k),
+                 index.nearest(query, k),
+                 "seed " + std::to_string(kSeed) + " k " + std::to_string(k));
+    }
+  }
+}
+
+TEST(PointIndex, WithinMatchesBruteForceOnRandomPoints) {
+  const Points points = randomPoints(2000, kSeed);
+  const PointIndex index(points);
+  for (const double radius : {0.01, 0.1, 0.3, 4.0}) {
+    for (const auto& query : queries(points, kSeed)) {
+      expectSame(bruteWithin(points, query, radius),
+                 index.within(query, radius),
+                 "seed " + std::to_string(kSeed) + " radius " + std::to_string(radius));
+    }
+  }
+}
+
+TEST(PointIndex, QueryPointItselfComesFirstWithZeroDistance) {
+  const Points points = randomPoints(2000, kSeed);
+  const PointIndex index(points);
+  const std::vector<Neighbour> found = index.nearest(points[123], 5);
+  ASSERT_EQ(found.size(), 5u);
+  EXPECT_EQ(found[0].index, 123);
+  EXPECT_EQ(found[0].squared_distance, 0.0);
+}
+
+// A lattice is all ties: the lower index must win, at every rank and at the k-th boundary.
+TEST(PointIndex, TiesOnALatticeAreBrokenByIndex) {
+  Points lattice;
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      for (int l = 0; l < 8; ++l) {
+        lattice.emplace_back(0.5 * i, 0.5 * j, 0.5 * l);
+      }
+    }
+  }
+  const PointIndex index(lattice);
+  for (const auto& query : {lattice[0], lattice[273], Eigen::Vector3d(1.25, 1.25, 1.25)}) {
+    for (const int k : {2, 5, 7, 19, 27}) {
+      expectSame(bruteNearest(lattice, query, k), index.nearest(query, k), "lattice k");
+    }
+    expectSame(bruteWithin(lattice, query, 0.5), index.within(query, 0.5), "lattice r");
+  }
+}
+
+TEST(PointIndex, KLargerThanTheSetReturnsEveryPointSorted) {
+  const Points points = randomPoints(10, kSeed);
+  const PointIndex index(points);
+  const Eigen::Vector3d query(0.1, 0.2, 0.3);
+  const std::vector<Neighbour> found = index.nearest(query, 50);
+  EXPECT_EQ(found.size(), 10u);
+  expectSame(bruteNearest(points, query, 50), found, "k > size");
+}
+
+TEST(PointIndex, EmptySetAndNonPositiveKFindNothing) {
+  const PointIndex empty{Points()};
+  EXPECT_EQ(empty.size(), 0u);
+  EXPECT_TRUE(empty.nearest(Eigen::Vector3d::Zero(), 5).empty());
+  EXPECT_TRUE(empty.within(Eigen::Vector3d::Zero(), 1.0).empty());
+  const PointIndex index(randomPoints(10, kSeed));
+  EXPECT_TRUE(index.nearest(Eigen::Vector3d::Zero(), 0).empty());
+  EXPECT_TRUE(index.nearest(Eigen::Vector3d::Zero(), -3).empty());
+}
+
+// `within` is inclusive: radius 0 finds exactly the points at the query, nothing elsewhere.
+TEST(PointIndex, RadiusZeroFindsOnlyCoincidentPoints) {
+  Points points = randomPoints(100, kSeed);
+  points.push_back(points[42]);  // a duplicate: both must be found, lower index first
+  const PointIndex index(points);
+  const std::vector<Neighbour> found = index.within(points[42], 0.0);
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_EQ(found[0].index, 42);
+  EXPECT_EQ(found[1].index, 100);
+  EXPECT_TRUE(index.within(Eigen::Vector3d(5.0, 5.0, 5.0), 0.0).empty());
+  EXPECT_TRUE(index.within(points[0], -1.0).empty());
+  EXPECT_TRUE(index.within(points[0], std::nan("")).empty());
+}
+
+TEST(PointIndex, NonFinitePointsAndQueriesAreIgnored) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Points points = randomPoints(20, kSeed);
+  points[3] = Eigen::Vector3d(nan, 0.0, 0.0);
+  points[7] = Eigen::Vector3d(0.0, std::numeric_limits<double>::infinity(), 0.0);
+  const PointIndex index(points);
+  EXPECT_EQ(index.size(), 20u);
+  const std::vector<Neighbour> found = index.nearest(Eigen::Vector3d::Zero(), 100);
+  EXPECT_EQ(found.size(), 18u);
+  for (const auto& n : found) {
+    EXPECT_NE(n.index, 3);
+    EXPECT_NE(n.index, 7);
+  }
+  EXPECT_TRUE(index.nearest(Eigen::Vector3d(nan, 0.0, 0.0), 3).empty());
+  EXPECT_TRUE(index.within(Eigen::Vector3d(nan, 0.0, 0.0), 1.0).empty());
+}
+
+TEST(PointIndex, ConcurrentQueriesAgreeWithSerialOnes) {
+  const Points points = randomPoints(2000, kSeed);
+  const PointIndex index(points);
+  const auto count = static_cast<std::ptrdiff_t>(points.size());
+  std::vector<std::vector<Neighbour>> parallel(points.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
+    parallel[static_cast<std::size_t>(i)] = index.nearest(points[static_cast<std::size_t>(i)], 12);
+  }
+  for (std::size_t i = 0; i < points.size(); i += 13) {
+    expectSame(index.nearest(points[i], 12), parallel[i], "parallel " + std::to_string(i));
+  }
+}
+
+}  // namespace
+}  // namespace freeform_inspection
