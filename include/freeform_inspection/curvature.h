@@ -47,14 +47,17 @@ CurvatureResult computeMeshCurvature(const Points& vertices,
 
 /// Curvature estimator on unorganized point clouds.
 struct CloudCurvatureConfig {
-  int neighbours = 24;  ///< k nearest neighbours of the local quadric fit (and the normal)
+  int neighbours = 24;  ///< k nearest neighbours of the curvature fit (and the PCA normal)
 };
 
-/// @brief Curvature of every point of a cloud without faces: a quadric z = ax² + bxy + cy² + dx
-/// + ey + f fitted to the k nearest neighbours in the local PCA frame gives H; normals come from
-/// the scan when given (`normals` non-empty, one per point), else from PCA, oriented outward
-/// (consistently propagated over the kNN graph, then flipped so most point away from the
-/// centroid). Each point's area is π d_k² / k, d_k the distance to its k-th neighbour.
+/// @brief Curvature of every point of a cloud without faces: the shape operator S fitted by
+/// least squares to the normal changes towards the k nearest neighbours (n_j − n_i ≈ S·(p_j −
+/// p_i) in the tangent plane; neighbours whose normal turned by more than 120° are on the other
+/// side of a thin wall and skipped) gives H = trace(S)/2. Normals are PCA normals of the
+/// neighbourhood, oriented by the scan's normals where given (`normals` non-empty, one per
+/// point; zero = unknown), elsewhere propagated over the kNN graph along the surface and
+/// flipped so that most point away from the centroid. Each
+/// point's area is π d_k² / k, d_k the distance to its k-th neighbour.
 CurvatureResult computeCloudCurvature(const Points& points,
                                       const Points& normals,
                                       const CloudCurvatureConfig& config);

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Copyright 2026 The freeform_inspection authors
 //
-// Mean curvature of an unorganized cloud: a quadric height field fitted to each point's k nearest
-// neighbours, with normals from the scan or from PCA, oriented by propagation over the kNN graph.
-// The Gaussian curvature stays empty for clouds (as curvature.h documents): the descriptor uses H
-// only, and K from a per-point quadric is noisier still.
+// Mean curvature of an unorganized cloud: the shape operator fitted to the change of the normals
+// towards each point's k nearest neighbours, with normals from the scan or from PCA, oriented by
+// propagation over the kNN graph. The Gaussian curvature stays empty for clouds (as curvature.h
+// documents): the descriptor uses H only.
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +16,6 @@
 #include <vector>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/QR>
 
 #include "freeform_inspection/curvature.h"
 #include "freeform_inspection/point_index.h"
@@ -24,10 +23,10 @@
 namespace freeform_inspection {
 namespace {
 
-constexpr int kQuadricTerms = 6;
+constexpr int kMinNeighbours = 6;  // a stable PCA normal and shape-operator fit
 constexpr double kPi = 3.14159265358979323846;
-// Relative pivot threshold of the quadric fit: below it the neighbours are (nearly) collinear,
-// coincident or on a conic through too few points, and the fitted curvature would be noise.
+// Relative eigenvalue threshold of the shape-operator fit: below it the neighbours are (nearly)
+// collinear or coincident, and the fitted curvature would be noise.
 constexpr double kFitRankThreshold = 1e-6;
 
 // The k nearest neighbours of every point, row-major (point i's at [i·k, (i+1)·k)), nearest
@@ -61,9 +60,9 @@ Status checkSizes(const Points& points, const Points& normals, const CloudCurvat
     return invalid("normals.size() = " + std::to_string(normals.size()) +
                    " but points.size() = " + std::to_string(points.size()));
   }
-  if (config.neighbours < kQuadricTerms) {
+  if (config.neighbours < kMinNeighbours) {
     return invalid("neighbours = " + std::to_string(config.neighbours) +
-                   ", the quadric fit needs at least 6");
+                   ", the curvature fit needs at least 6");
   }
   return Status::success();
 }
@@ -125,8 +124,10 @@ bool hasGivenNormal(const Points& normals, std::size_t point) {
   return !normals.empty() && normals[point].squaredNorm() > 0.0;
 }
 
-// Given normals (normalised) where usable, PCA normals elsewhere; `fixed` marks the given ones,
-// whose orientation is trusted and never flipped.
+// PCA normals everywhere, turned to agree with the given normal where there is one; `fixed` marks
+// those, whose orientation is trusted and never flipped. The given normals only orient: their
+// directions come from the scanner's own estimator (or, in synthetic scans, from flat faces),
+// and the curvature should depend on the measured points alone, like the CAD's.
 Points initialNormals(const Points& points,
                       const Points& normals,
                       const Neighbourhoods& hoods,
@@ -138,8 +139,10 @@ Points initialNormals(const Points& points,
   for (std::ptrdiff_t i = 0; i < count; ++i) {
     const auto point = static_cast<std::size_t>(i);
     fixed[point] = hasGivenNormal(normals, point) ? 1 : 0;
-    result[point] =
-        fixed[point] ? normals[point].normalized() : pcaNormal(points, hoods.of(point), hoods.k);
+    result[point] = pcaNormal(points, hoods.of(point), hoods.k);
+    if (fixed[point] && result[point].dot(normals[point]) < 0.0) {
+      result[point] = -result[point];
+    }
   }
   return result;
 }
@@ -192,19 +195,30 @@ struct HeavierEdge {
 
 using EdgeQueue = std::priority_queue<TreeEdge, std::vector<TreeEdge>, HeavierEdge>;
 
-// Hoppe's weight: edges between nearly parallel normals are trusted first, so the orientation
-// goes around sharp edges last and by the most reliable route.
+// Hoppe's weight (edges between nearly parallel normals first, so the orientation goes around
+// sharp edges last) plus a penalty for stepping along the normals: the two sides of a thin wall
+// (a blade's trailing edge) have parallel normals too, but the step between them is across the
+// surface, not along it, and following it would flip a whole side.
+double orientationWeight(const Points& points,
+                         const Points& normals,
+                         std::size_t a,
+                         std::size_t b) {
+  const Eigen::Vector3d step = (points[b] - points[a]).normalized();
+  return 1.0 - std::abs(normals[a].dot(normals[b])) + std::abs(step.dot(normals[a])) +
+         std::abs(step.dot(normals[b]));
+}
+
 void pushEdges(int from,
                const Graph& graph,
+               const Points& points,
                const Points& normals,
                const std::vector<char>& visited,
                EdgeQueue& queue) {
   const auto source = std::size_t(from);
   for (std::size_t e = graph.offsets[source]; e < graph.offsets[source + 1]; ++e) {
     const int to = graph.targets[e];
-    if (!visited[std::size_t(to)]) {
-      const double weight = 1.0 - std::abs(normals[source].dot(normals[std::size_t(to)]));
-      queue.push({weight, to, from});
+    if (!visited[std::size_t(to)] && points[source] != points[std::size_t(to)]) {
+      queue.push({orientationWeight(points, normals, source, std::size_t(to)), to, from});
     }
   }
 }
@@ -213,11 +227,12 @@ void pushEdges(int from,
 // flipped to agree with the tree point it was reached from. Returns the points reached.
 std::vector<int> propagateOrientation(const std::vector<int>& seeds,
                                       const Graph& graph,
+                                      const Points& points,
                                       Points& normals,
                                       std::vector<char>& visited) {
   EdgeQueue queue;
   for (const int seed : seeds) {
-    pushEdges(seed, graph, normals, visited, queue);
+    pushEdges(seed, graph, points, normals, visited, queue);
   }
   std::vector<int> reached = seeds;
   while (!queue.empty()) {
@@ -232,7 +247,7 @@ std::vector<int> propagateOrientation(const std::vector<int>& seeds,
       normals[to] = -normals[to];
     }
     reached.push_back(edge.to);
-    pushEdges(edge.to, graph, normals, visited, queue);
+    pushEdges(edge.to, graph, points, normals, visited, queue);
   }
   return reached;
 }
@@ -273,70 +288,66 @@ void orientNormals(const Points& points,
       anchors.push_back(static_cast<int>(i));
     }
   }
-  propagateOrientation(anchors, graph, normals, visited);
+  propagateOrientation(anchors, graph, points, normals, visited);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!visited[i]) {
       visited[i] = 1;
       const std::vector<int> component =
-          propagateOrientation({static_cast<int>(i)}, graph, normals, visited);
+          propagateOrientation({static_cast<int>(i)}, graph, points, normals, visited);
       orientAwayFromCentroid(component, points, normals);
     }
   }
 }
 
-// Any unit vector orthogonal to n; the quadric's gradient terms absorb the choice.
-Eigen::Matrix3d localFrame(const Eigen::Vector3d& normal) {
+// Tangent basis (two rows) of the plane orthogonal to n.
+Eigen::Matrix<double, 2, 3> tangentBasis(const Eigen::Vector3d& normal) {
   const Eigen::Vector3d helper =
       std::abs(normal.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   const Eigen::Vector3d u = normal.cross(helper).normalized();
-  Eigen::Matrix3d frame;
-  frame.row(0) = u;
-  frame.row(1) = normal.cross(u);
-  frame.row(2) = normal;
-  return frame;
+  Eigen::Matrix<double, 2, 3> basis;
+  basis.row(0) = u;
+  basis.row(1) = normal.cross(u);
+  return basis;
 }
 
-// Mean curvature of h(u, v) = a u² + b uv + c v² + d u + e v + f at u = v = 0, signed so that a
-// surface bending away from +h (a sphere seen from outside) is positive: minus the usual
-// upward-normal formula for a graph.
-double graphMeanCurvature(const Eigen::Matrix<double, kQuadricTerms, 1>& q) {
-  const double a = q[0], b = q[1], c = q[2], d = q[3], e = q[4];
-  const double gradient = 1.0 + d * d + e * e;
-  const double upward = ((1.0 + e * e) * 2.0 * a - 2.0 * d * e * b + (1.0 + d * d) * 2.0 * c) /
-                        (2.0 * std::pow(gradient, 1.5));
-  return -upward;
-}
-
-struct QuadricFit {
+struct CurvatureFit {
   bool usable = false;
   double mean = 0.0;
 };
 
-// Least-squares quadric in the local frame, coordinates divided by `scale` (the neighbourhood
-// radius) so the design matrix is well conditioned whatever the units; H scales back by 1/scale.
-QuadricFit fitQuadric(const Points& points,
-                      const int* neighbours,
-                      int k,
-                      const Eigen::Vector3d& centre,
-                      const Eigen::Vector3d& normal,
-                      double scale) {
-  const Eigen::Matrix3d frame = localFrame(normal);
-  Eigen::Matrix<double, Eigen::Dynamic, kQuadricTerms> design(k, kQuadricTerms);
-  Eigen::VectorXd heights(k);
+// Neighbours whose normal turned by more than this are on the other side of a thin wall.
+constexpr double kOppositeSide = -0.5;
+
+// The shape operator S (symmetric 2×2 in the tangent plane) fitted by least squares to the
+// normal changes towards the neighbours, n_j − n_i ≈ S·(p_j − p_i) in tangent coordinates;
+// H = trace(S)/2. Unlike a height-field fit it follows the normals around edges sharper than
+// the neighbourhood (a blade's leading and trailing edges), so the integrated curvature there
+// is kept; and it is exact for a sphere (n = p/R gives S = I/R).
+CurvatureFit fitShapeOperator(
+    const Points& points, const Points& normals, const int* neighbours, int k, std::size_t centre) {
+  const Eigen::Matrix<double, 2, 3> basis = tangentBasis(normals[centre]);
+  Eigen::Matrix3d normal_matrix = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
   for (int j = 0; j < k; ++j) {
-    const Eigen::Vector3d local = frame * (points[std::size_t(neighbours[j])] - centre) / scale;
-    const double u = local.x(), v = local.y();
-    design.row(j) << u * u, u * v, v * v, u, v, 1.0;
-    heights[j] = local.z();
+    const auto other = std::size_t(neighbours[j]);
+    if (other == centre || normals[centre].dot(normals[other]) < kOppositeSide) {
+      continue;
+    }
+    const Eigen::Vector2d t = basis * (points[other] - points[centre]);
+    const Eigen::Vector2d g = basis * (normals[other] - normals[centre]);
+    Eigen::Matrix<double, 2, 3> rows;  // unknowns (a, b, c) of S = [a b; b c]
+    rows << t.x(), t.y(), 0.0, 0.0, t.x(), t.y();
+    normal_matrix += rows.transpose() * rows;
+    rhs += rows.transpose() * g;
   }
-  Eigen::ColPivHouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, kQuadricTerms>> qr(design);
-  qr.setThreshold(kFitRankThreshold);
-  if (qr.rank() < kQuadricTerms) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(normal_matrix);
+  const Eigen::Vector3d spread = eigen.eigenvalues();
+  if (!(spread[2] > 0.0) || spread[0] < kFitRankThreshold * spread[2]) {
     return {};
   }
-  const Eigen::Matrix<double, kQuadricTerms, 1> coefficients = qr.solve(heights);
-  const double mean = graphMeanCurvature(coefficients) / scale;
-  return std::isfinite(mean) ? QuadricFit{true, mean} : QuadricFit{};
+  const Eigen::Vector3d s = normal_matrix.ldlt().solve(rhs);
+  const double mean = 0.5 * (s[0] + s[2]);
+  return std::isfinite(mean) ? CurvatureFit{true, mean} : CurvatureFit{};
 }
 
 // H and area per point; returns how many points had a usable fit.
@@ -352,8 +363,8 @@ std::size_t fitAllPoints(const Points& points, const Neighbourhoods& hoods, Curv
     const double kth = hoods.kth_squared_distance[point];
     out.area[point] = kPi * kth / double(hoods.k);
     if (kth > 0.0) {
-      const QuadricFit fit = fitQuadric(
-          points, hoods.of(point), hoods.k, points[point], out.normals[point], std::sqrt(kth));
+      const CurvatureFit fit =
+          fitShapeOperator(points, out.normals, hoods.of(point), hoods.k, point);
       out.mean[point] = fit.mean;
       usable[point] = fit.usable ? 1 : 0;
     }
@@ -377,7 +388,7 @@ CurvatureResult computeCloudCurvature(const Points& points,
   orientNormals(points, hoods, fixed, result.normals);
   if (fitAllPoints(points, hoods, result) == 0) {
     result.status = Status::failure(StatusCode::kDegenerateInput,
-                                    "cloud curvature: no point has a usable quadric fit (all " +
+                                    "cloud curvature: no point has a usable curvature fit (all " +
                                         std::to_string(points.size()) +
                                         " neighbourhoods coincident or collinear)");
   }

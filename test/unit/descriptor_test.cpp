@@ -12,10 +12,12 @@
 #include <vector>
 
 #include "analytic_shapes.h"
+#include "blade_geometry.h"
 #include <gtest/gtest.h>
 #include <omp.h>
 
 #include "freeform_inspection/mesh.h"
+#include "freeform_inspection/point_index.h"
 #include "freeform_inspection/surface_sampling.h"
 
 namespace freeform_inspection {
@@ -164,6 +166,41 @@ TEST(Descriptor, CloudAndMeshOfTheSameSphereAgree) {
                          sphereValue(r)),
                 2e-3);
     }
+  }
+}
+
+double quantile(std::vector<double> values, double q) {
+  const auto at = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(at), values.end());
+  return values[at];
+}
+
+TEST(Descriptor, ScanCloudOfTheBladeAgreesWithItsCadMesh) {
+  // The shipped blade (mesh, descriptors as the Model computes them) and a 30,000-point cloud
+  // sampled from it with 0.02 mm noise, no normals: the case of every unorganized scan. The
+  // blade's thin trailing edge (0.6 mm) is where clouds go wrong (orientation flipped across
+  // the wall, curvature lost around the edge); this pins that they do not.
+  tools::BladeParameters parameters;
+  TriangleMesh cad = tools::generateBlade(parameters);
+  for (auto& v : cad.vertices) {
+    v *= 0.001;
+  }
+  const auto radii = radiiFor(cad.vertices);
+  const DescriptorResult from_cad = describe(cad, radii);
+  const SurfaceSample scan = sampleSurface(cad, 30000, kSeed, 0.00002);
+  const DescriptorResult from_scan = computeDescriptors(scan.points, {}, {}, radii, {});
+  ASSERT_TRUE(from_scan.status.ok()) << from_scan.status.message;
+  const PointIndex cad_index(cad.vertices);
+  for (int k = 0; k < 6; ++k) {
+    std::vector<double> differences;
+    for (std::size_t i = 0; i < scan.points.size(); i += 5) {
+      const auto nearest = static_cast<std::size_t>(cad_index.nearest(scan.points[i], 1)[0].index);
+      differences.push_back(std::abs(from_scan.value(i, k) - from_cad.value(nearest, k)));
+    }
+    // Measured (seed 11): median 0.002 … 0.016, 90th percentile 0.044 … 0.055 over the scales,
+    // while V ranges over 0.21 … 0.50 on the blade.
+    EXPECT_LT(quantile(differences, 0.5), 0.025) << "scale " << k + 1;
+    EXPECT_LT(quantile(differences, 0.9), 0.08) << "scale " << k + 1;
   }
 }
 
