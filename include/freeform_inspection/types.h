@@ -59,9 +59,17 @@ struct TriangleMesh {
 
 /// A scan: points, with faces when the scanner delivered a mesh, with normals when known.
 struct Scan {
-  Points points;    ///< [m] finite positions only
+  Points points;    ///< [m] (NaN/inf allowed on input: the pipeline removes and counts them)
   Triangles faces;  ///< empty for a point cloud
   Points normals;   ///< empty, or one per point: unit length, or zero where unknown
+  int width = 0;    ///< organized scans (range images): columns; 0 when unorganized
+  int height = 0;   ///< organized scans: rows (points are row-major, width·height of them)
+
+  /// True when the points form a width × height grid (NaN where nothing was measured).
+  bool isOrganized() const {
+    return width > 0 && height > 1 &&
+           static_cast<std::size_t>(width) * static_cast<std::size_t>(height) == points.size();
+  }
 };
 
 /// Axis-aligned bounding box.

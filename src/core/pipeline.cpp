@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "freeform_inspection/organized_mesh.h"
+
 namespace freeform_inspection {
 namespace {
 
@@ -13,6 +15,20 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Organized scans (range images) carry their connectivity: triangulate on the grid, before the
+// non-finite pixels are removed, so the scan is a mesh like the CAD.
+CleanScanResult cleanWithGridFaces(const Scan& scan,
+                                   const BoundingBox& model_bounds,
+                                   const InputConfig& config) {
+  if (!scan.isOrganized() || !scan.faces.empty()) {
+    return cleanScan(scan, model_bounds, config);
+  }
+  Scan meshed = scan;
+  meshed.faces =
+      triangulateOrganizedGrid(scan.points, scan.width, scan.height, OrganizedMeshConfig());
+  return cleanScan(meshed, model_bounds, config);
 }
 
 }  // namespace
@@ -78,14 +94,26 @@ InspectionResult inspect(const Model& model, const Scan& scan, const PipelineCon
   result.counts.cad_vertices = model.mesh().vertices.size();
 
   const auto clean_start = Clock::now();
-  const CleanScanResult cleaned = cleanScan(scan, model.bounds(), config.input);
+  const CleanScanResult cleaned = cleanWithGridFaces(scan, model.bounds(), config.input);
   result.timings.push_back({"clean", secondsSince(clean_start)});
   result.counts.scan_points = cleaned.scan.points.size();
   result.counts.non_finite = cleaned.non_finite;
   result.status = cleaned.status;
   if (result.status.ok()) {
-    // The descriptor and registration stages land with the registration work; until then the
-    // pipeline says so rather than returning an identity pose that looks like an answer.
+    const auto descriptor_start = Clock::now();
+    // The CAD's radii, so a partial scan gets the same descriptor as the full part.
+    const DescriptorResult descriptors = computeDescriptors(cleaned.scan.points,
+                                                            cleaned.scan.faces,
+                                                            cleaned.scan.normals,
+                                                            model.descriptors().radii,
+                                                            config.descriptor);
+    result.timings.push_back({"descriptors", secondsSince(descriptor_start)});
+    result.status = descriptors.status;
+  }
+  if (result.status.ok()) {
+    // Feature selection, correspondences and registration land with the registration work;
+    // until then the pipeline says so rather than return an identity pose that looks like an
+    // answer.
     result.status = Status::failure(StatusCode::kNotImplemented,
                                     "registration is not implemented yet: no pose computed");
   }

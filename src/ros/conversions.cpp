@@ -88,6 +88,10 @@ CloudConversion cloudToScan(const sensor_msgs::PointCloud2& cloud) {
   if (error.empty() && (x = findField(cloud, "x", &error)) && (y = findField(cloud, "y", &error)) &&
       (z = findField(cloud, "z", &error))) {
     result.scan.points.reserve(std::size_t{cloud.width} * cloud.height);
+    if (cloud.height > 1) {  // a range image: the pipeline triangulates it on its grid
+      result.scan.width = static_cast<int>(cloud.width);
+      result.scan.height = static_cast<int>(cloud.height);
+    }
     for (std::uint32_t row = 0; row < cloud.height; ++row) {
       const std::uint8_t* row_data = cloud.data.data() + std::size_t{row} * cloud.row_step;
       for (std::uint32_t col = 0; col < cloud.width; ++col) {

@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include "analytic_clouds.h"
+#include "analytic_shapes.h"
 #include "test_shapes.h"
 #include <gtest/gtest.h>
 
@@ -25,10 +27,34 @@ TEST(Inspect, ValidScanReportsNotImplementedNeverAnIdentityPoseAsAnAnswer) {
   EXPECT_EQ(result.verdict, Verdict::kNotEvaluated);
   EXPECT_EQ(result.counts.scan_points, 400u);
   EXPECT_EQ(result.counts.cad_vertices, 8u);
-  ASSERT_FALSE(result.timings.empty());
-  EXPECT_EQ(result.timings.front().stage, "clean");
-  EXPECT_EQ(result.timings.back().stage, "total");
+  ASSERT_EQ(result.timings.size(), 3u);
+  EXPECT_EQ(result.timings[0].stage, "clean");
+  EXPECT_EQ(result.timings[1].stage, "descriptors");
+  EXPECT_EQ(result.timings[2].stage, "total");
   EXPECT_GE(result.timings.back().seconds, result.timings.front().seconds);
+}
+
+TEST(Inspect, OrganizedRangeImageWithHolesRunsThroughTheDescriptors) {
+  // A 50 mm sphere seen by a 96 × 96 pinhole camera from 0.3 m: NaN around the silhouette.
+  const Model sphere(test::icosphere(0.05, 4), "sphere", "test");
+  const analytic::Pinhole camera{96, 96, 300.0};
+  const analytic::OrganizedCloud image =
+      analytic::organizedSphere(camera, Eigen::Vector3d(0, 0, 0.3), 0.05);
+  Scan scan;
+  scan.points = image.points;
+  scan.width = image.width;
+  scan.height = image.height;
+  ASSERT_TRUE(scan.isOrganized());
+  std::size_t holes = 0;
+  for (const auto& p : scan.points) {
+    holes += p.allFinite() ? 0 : 1;
+  }
+  ASSERT_GT(holes, 0u);
+  const InspectionResult result = inspect(sphere, scan, PipelineConfig());
+  EXPECT_EQ(result.status.code, StatusCode::kNotImplemented) << result.status.message;
+  EXPECT_EQ(result.counts.non_finite, holes);
+  EXPECT_EQ(result.counts.scan_points, scan.points.size() - holes);
+  EXPECT_EQ(result.timings[1].stage, "descriptors");
 }
 
 TEST(Inspect, StopsAtTheCleaningStageWithItsStatus) {
