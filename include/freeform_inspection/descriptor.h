@@ -27,6 +27,9 @@ struct DescriptorConfig {
   double max_radius_ratio = 0.1;       ///< r_max / L_max, L_max = CAD bounding-box diagonal (paper)
   double cell_ratio = 0.4;             ///< surface-graph cell size / r_1: resolution of the balls
   int cloud_edge_neighbours = 8;       ///< clouds: kNN surface edges per point
+  double cloud_thinning_ratio = 0.25;  ///< clouds: one point per voxel of this × cell size is
+                                       ///< analysed (denser sampling adds cost, not detail);
+                                       ///< 0 analyses every point
   MeshCurvatureConfig mesh_curvature;  ///< one-ring curvature on meshes
   CloudCurvatureConfig cloud_curvature;  ///< local-quadric curvature on clouds
 };
@@ -41,7 +44,9 @@ std::vector<double> kernelRadii(double cad_diagonal, const DescriptorConfig& con
 struct DescriptorResult {
   Status status;                   ///< kDegenerateInput when the surface has no usable area
   std::vector<double> radii;       ///< [m] r_k
-  CurvatureResult curvature;       ///< one-ring (mesh) or local-quadric (cloud) curvature
+  CurvatureResult curvature;       ///< curvature of the analysed points (see below)
+  std::vector<int> analysed;       ///< indices of the points the curvature belongs to: all of
+                                   ///< them, or one per voxel of a thinned dense cloud
   SurfaceGraph graph;              ///< cells on which the balls were grown
   Eigen::MatrixXd cell_values;     ///< cells × K: V_k of every cell
   Eigen::MatrixXd cell_curvature;  ///< cells × K: H̃_k of every cell [1/m]
@@ -52,6 +57,8 @@ struct DescriptorResult {
 };
 
 /// @brief Computes V_k for every point of a mesh (faces non-empty) or a cloud (faces empty).
+/// A dense cloud is thinned first (cloud_thinning_ratio); every point still gets the value of
+/// the cell its voxel's representative fell in.
 /// @param normals optional (empty or one per point): scanner normals for clouds.
 /// @param radii kernel radii from kernelRadii() of the CAD model.
 DescriptorResult computeDescriptors(const Points& points,

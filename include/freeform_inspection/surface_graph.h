@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "freeform_inspection/types.h"
@@ -47,6 +48,10 @@ struct SurfaceGraph {
 SurfaceGraph buildSurfaceGraph(const SurfaceSamples& samples,
                                const std::vector<SurfaceEdge>& edges,
                                double cell_size);
+
+/// @brief Voxel of every point on a grid of `cell_size` anchored at the points' bounding box:
+/// equal keys mean the same voxel. Points must be finite.
+std::vector<std::uint64_t> voxelKeys(const Points& points, double cell_size);
 
 /// @brief Undirected edges of a triangle mesh, each once.
 std::vector<SurfaceEdge> meshEdges(const Triangles& faces);

@@ -15,6 +15,7 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"descriptor/cell_ratio", &config.descriptor.cell_ratio},
       {"descriptor/cloud_edge_neighbours", &config.descriptor.cloud_edge_neighbours},
       {"descriptor/cloud_neighbours", &config.descriptor.cloud_curvature.neighbours},
+      {"descriptor/cloud_thinning_ratio", &config.descriptor.cloud_thinning_ratio},
       {"tolerance/upper", &config.tolerance.upper},
       {"tolerance/lower", &config.tolerance.lower},
   };

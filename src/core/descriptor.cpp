@@ -2,8 +2,12 @@
 // Copyright 2026 The freeform_inspection authors
 #include "freeform_inspection/descriptor.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <numeric>
+#include <unordered_map>
 
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/mesh_adjacency.h"
@@ -68,6 +72,45 @@ Eigen::MatrixXd multiscaleCurvature(const SurfaceGraph& graph, const std::vector
   return curvature;
 }
 
+// The points a cloud's curvature is computed on: the lowest-index point of every voxel (a real
+// sample, never an average that could fall inside a thin wall). `representative` maps every
+// point to its voxel's entry in the returned list.
+std::vector<int> thinCloud(const Points& points, double voxel, std::vector<int>* representative) {
+  std::vector<int> kept;
+  representative->assign(points.size(), -1);
+  const bool finite = std::all_of(
+      points.begin(), points.end(), [](const Eigen::Vector3d& p) { return p.allFinite(); });
+  if (!(voxel > 0.0) || !finite) {  // non-finite input is reported by the curvature stage
+    std::iota(representative->begin(), representative->end(), 0);
+    kept = *representative;
+    return kept;
+  }
+  const std::vector<std::uint64_t> keys = voxelKeys(points, voxel);
+  std::unordered_map<std::uint64_t, int> first;
+  first.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto entry = first.emplace(keys[i], static_cast<int>(kept.size()));
+    if (entry.second) {
+      kept.push_back(static_cast<int>(i));
+    }
+    (*representative)[i] = entry.first->second;
+  }
+  return kept;
+}
+
+template <typename T>
+std::vector<T> select(const std::vector<T>& values, const std::vector<int>& indices) {
+  std::vector<T> selected;
+  if (values.empty()) {
+    return selected;
+  }
+  selected.reserve(indices.size());
+  for (const int i : indices) {
+    selected.push_back(values[static_cast<std::size_t>(i)]);
+  }
+  return selected;
+}
+
 Status checkRadii(const std::vector<double>& radii) {
   for (std::size_t k = 0; k < radii.size(); ++k) {
     if (!(radii[k] > 0.0) || !std::isfinite(radii[k]) || (k > 0 && radii[k] <= radii[k - 1])) {
@@ -91,6 +134,9 @@ std::vector<std::string> validate(const DescriptorConfig& config) {
   }
   if (!(config.cell_ratio > 0.0 && config.cell_ratio <= 1.0)) {
     errors.push_back("descriptor.cell_ratio must be in (0, 1]");
+  }
+  if (!(config.cloud_thinning_ratio >= 0.0 && config.cloud_thinning_ratio <= 1.0)) {
+    errors.push_back("descriptor.cloud_thinning_ratio must be in [0, 1]");
   }
   if (config.cloud_edge_neighbours < 3) {
     errors.push_back("descriptor.cloud_edge_neighbours must be at least 3");
@@ -127,7 +173,17 @@ DescriptorResult computeDescriptors(const Points& points,
   if (!result.status.ok()) {
     return result;
   }
-  result.curvature = pointCurvature(points, faces, normals, config);
+  std::vector<int> representative;
+  result.analysed = faces.empty()
+                        ? thinCloud(points,
+                                    config.cloud_thinning_ratio * config.cell_ratio * radii.front(),
+                                    &representative)
+                        : std::vector<int>();
+  const bool thinned = faces.empty() && result.analysed.size() < points.size();
+  const Points analysed_points = thinned ? select(points, result.analysed) : Points();
+  const Points& surface = thinned ? analysed_points : points;
+  result.curvature =
+      pointCurvature(surface, faces, thinned ? select(normals, result.analysed) : normals, config);
   result.status = result.curvature.status;
   if (!result.status.ok()) {
     return result;
@@ -135,11 +191,22 @@ DescriptorResult computeDescriptors(const Points& points,
   const std::vector<SurfaceEdge> edges =
       faces.empty()
           ? cloudEdges(
-                points, result.curvature.normals, config.cloud_edge_neighbours, radii.front())
+                surface, result.curvature.normals, config.cloud_edge_neighbours, radii.front())
           : meshEdges(faces);
   const SurfaceSamples samples{
-      &points, &result.curvature.normals, &result.curvature.area, &result.curvature.mean};
+      &surface, &result.curvature.normals, &result.curvature.area, &result.curvature.mean};
   result.graph = buildSurfaceGraph(samples, edges, config.cell_ratio * radii.front());
+  if (thinned) {  // every original point takes the cell of its voxel's representative
+    std::vector<int> point_cell(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      point_cell[i] = result.graph.point_cell[static_cast<std::size_t>(representative[i])];
+    }
+    result.graph.point_cell = std::move(point_cell);
+  }
+  if (result.analysed.empty() || !thinned) {
+    result.analysed.resize(points.size());
+    std::iota(result.analysed.begin(), result.analysed.end(), 0);
+  }
   if (result.graph.size() == 0) {
     result.status = Status::failure(StatusCode::kDegenerateInput, "surface has no area");
     return result;

@@ -47,6 +47,7 @@ std::string descriptorCacheKey(const TriangleMesh& mesh, const DescriptorConfig&
   hash.add(config.max_radius_ratio);
   hash.add(config.cell_ratio);
   hash.add(config.cloud_edge_neighbours);
+  hash.add(config.cloud_thinning_ratio);
   hash.add(config.mesh_curvature.method);
   hash.add(config.cloud_curvature.neighbours);
   return hash.hex();

@@ -44,17 +44,6 @@ bool usable(const SurfaceSamples& s, std::size_t i) {
   return (*s.area)[i] > 0.0 && std::isfinite((*s.area)[i]) && std::isfinite((*s.curvature)[i]);
 }
 
-std::vector<std::uint64_t> voxelKeys(const Points& points, double cell_size) {
-  const BoundingBox box = computeBoundingBox(points);
-  const Eigen::Vector3d cells = (box.extent() / cell_size).array().floor() + 1.0;
-  std::vector<std::uint64_t> keys(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector3d c = ((points[i] - box.min) / cell_size).array().floor();
-    keys[i] = static_cast<std::uint64_t>(c.x() + cells.x() * (c.y() + cells.y() * c.z()));
-  }
-  return keys;
-}
-
 // Cell of every usable point: connected (through `edges`) points of one voxel share a cell.
 std::vector<int> assignCells(const SurfaceSamples& s,
                              const std::vector<SurfaceEdge>& edges,
@@ -147,6 +136,17 @@ SurfaceGraph buildSurfaceGraph(const SurfaceSamples& samples,
   accumulateCells(samples, &graph, cells);
   linkCells(edges, &graph);
   return graph;
+}
+
+std::vector<std::uint64_t> voxelKeys(const Points& points, double cell_size) {
+  const BoundingBox box = computeBoundingBox(points);
+  const Eigen::Vector3d cells = (box.extent() / cell_size).array().floor() + 1.0;
+  std::vector<std::uint64_t> keys(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d c = ((points[i] - box.min) / cell_size).array().floor();
+    keys[i] = static_cast<std::uint64_t>(c.x() + cells.x() * (c.y() + cells.y() * c.z()));
+  }
+  return keys;
 }
 
 std::vector<SurfaceEdge> meshEdges(const Triangles& faces) {

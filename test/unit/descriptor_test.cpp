@@ -106,6 +106,20 @@ TEST(Descriptor, SphereFollowsEq10WhichIsTheExactBallVolume) {
   }
 }
 
+TEST(Descriptor, SaddleIsOneHalfAtItsCentre) {
+  // z = (x² − y²)/(2a): H = 0 at the origin and H(x, y) ≈ (y² − x²)/(2a³) nearby, which averages
+  // to zero over any ball centred there, so V_k = 1/2 at the centre (not just to first order).
+  const double a = 0.1;
+  const TriangleMesh saddle = test::saddleGrid(a, 0.2, 100);
+  const std::size_t centre = 50 * 101 + 50;
+  ASSERT_LT(saddle.vertices[centre].norm(), 1e-12);
+  const DescriptorResult d = describe(saddle, kernelRadii(0.3, DescriptorConfig()));
+  ASSERT_TRUE(d.status.ok()) << d.status.message;
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_NEAR(d.value(centre, k), 0.5, 1e-3) << "scale " << k + 1;
+  }
+}
+
 // Normalized volume of ball(r) ∩ solid infinite cylinder(R) for a centre on the surface, by
 // Monte Carlo with a fixed seed (standard error ≈ 0.5/sqrt(n)).
 double exactCylinderValue(double r, int samples) {
