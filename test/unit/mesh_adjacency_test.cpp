@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "analytic_shapes.h"
+#include "test_shapes.h"
 #include <gtest/gtest.h>
 
 namespace freeform_inspection {
@@ -30,20 +31,9 @@ Triangles tetrahedronFaces() {
   return {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
 }
 
-// Unit cube, corner i at (i & 1, i & 2, i & 4), two outward triangles per side.
+// Unit cube with two outward triangles per side (the box of test_shapes.h).
 Triangles cubeFaces() {
-  return {{0, 2, 1},
-          {1, 2, 3},
-          {4, 5, 6},
-          {5, 7, 6},
-          {0, 1, 4},
-          {1, 5, 4},
-          {2, 6, 3},
-          {3, 6, 7},
-          {0, 4, 2},
-          {2, 4, 6},
-          {1, 3, 5},
-          {3, 7, 5}};
+  return test::makeBox(Eigen::Vector3d::Ones()).faces;
 }
 
 std::vector<int> neighboursOf(const MeshAdjacency& adjacency, std::size_t v) {
