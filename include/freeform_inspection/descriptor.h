@@ -25,9 +25,9 @@ namespace freeform_inspection {
 struct DescriptorConfig {
   int scales = 6;                      ///< K, number of kernel radii (paper: 6)
   double max_radius_ratio = 0.1;       ///< r_max / L_max, L_max = CAD bounding-box diagonal (paper)
-  double cell_ratio = 0.4;             ///< surface-graph cell size / r_1: resolution of the balls
+  double cell_ratio = 0.6;             ///< surface-graph cell size / r_1: resolution of the balls
   int cloud_edge_neighbours = 8;       ///< clouds: kNN surface edges per point
-  double cloud_thinning_ratio = 0.25;  ///< clouds: one point per voxel of this × cell size is
+  double cloud_thinning_ratio = 0.1;   ///< clouds: one point per voxel of this × r_1 is
                                        ///< analysed (denser sampling adds cost, not detail);
                                        ///< 0 analyses every point
   MeshCurvatureConfig mesh_curvature;  ///< one-ring curvature on meshes

@@ -174,11 +174,10 @@ DescriptorResult computeDescriptors(const Points& points,
     return result;
   }
   std::vector<int> representative;
-  result.analysed = faces.empty()
-                        ? thinCloud(points,
-                                    config.cloud_thinning_ratio * config.cell_ratio * radii.front(),
-                                    &representative)
-                        : std::vector<int>();
+  result.analysed =
+      faces.empty()
+          ? thinCloud(points, config.cloud_thinning_ratio * radii.front(), &representative)
+          : std::vector<int>();
   const bool thinned = faces.empty() && result.analysed.size() < points.size();
   const Points analysed_points = thinned ? select(points, result.analysed) : Points();
   const Points& surface = thinned ? analysed_points : points;
