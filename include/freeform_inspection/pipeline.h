@@ -75,6 +75,8 @@ struct DefectRegion {
 struct InspectionCounts {
   std::size_t scan_points = 0;      ///< finite scan points used
   std::size_t non_finite = 0;       ///< NaN/inf points removed
+  std::size_t scan_faces = 0;       ///< triangles of the scan surface (given, or from the grid
+                                    ///< of an organized scan); 0 for an unorganized cloud
   std::size_t cad_vertices = 0;     ///< model vertices
   std::size_t features = 0;         ///< rare features selected on the scan
   std::size_t candidates = 0;       ///< CAD candidates for those features

@@ -98,6 +98,7 @@ InspectionResult inspect(const Model& model, const Scan& scan, const PipelineCon
   result.timings.push_back({"clean", secondsSince(clean_start)});
   result.counts.scan_points = cleaned.scan.points.size();
   result.counts.non_finite = cleaned.non_finite;
+  result.counts.scan_faces = cleaned.scan.faces.size();
   result.status = cleaned.status;
   if (result.status.ok()) {
     const auto descriptor_start = Clock::now();

@@ -68,6 +68,7 @@ nlohmann::ordered_json defectsJson(const std::vector<DefectRegion>& defects) {
 nlohmann::ordered_json countsJson(const InspectionCounts& c) {
   return {{"scan_points", c.scan_points},
           {"non_finite", c.non_finite},
+          {"scan_faces", c.scan_faces},
           {"cad_vertices", c.cad_vertices},
           {"features", c.features},
           {"candidates", c.candidates},

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "analytic_clouds.h"
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -95,6 +96,7 @@ TEST(InspectionNode, AnswersSampleScanHonestlyWhileRegistrationIsMissing) {
   EXPECT_NE(response.message.find("not implemented"), std::string::npos) << response.message;
   EXPECT_EQ(response.report.part_id, "sn-0001");
   EXPECT_EQ(response.report.counts.scan_points, scan.scan.points.size());
+  EXPECT_EQ(response.report.counts.scan_faces, 0u) << "an unorganized cloud has no faces";
   EXPECT_EQ(response.report.header.frame_id, "scanner");
   EXPECT_EQ(response.report.transform.child_frame_id, "part");
   const auto result =
@@ -136,6 +138,31 @@ TEST(InspectionNode, RefusesBadRequestsWithReasonsAndKeepsServing) {
 
   const auto good = callInspect(cloudRequest(toCloud(scan.scan.points, "s")));
   EXPECT_EQ(good.report.error_code, "NOT_IMPLEMENTED") << "node stopped serving after bad input";
+}
+
+TEST(InspectionNode, OrganizedCloudWithNanPixelsIsReadOnItsGrid) {
+  // A range image (height > 1) with NaN where the rays miss: the node passes the grid on, the
+  // pipeline triangulates it, removes the NaN pixels and counts them.
+  namespace analytic = freeform_inspection::analytic;
+  const analytic::Pinhole camera{96, 64, 300.0};
+  const analytic::OrganizedCloud image =
+      analytic::organizedSphere(camera, Eigen::Vector3d(0, 0, 0.3), 0.05);
+  sensor_msgs::PointCloud2 cloud = toCloud(image.points, "camera_optical");
+  cloud.height = static_cast<std::uint32_t>(image.height);
+  cloud.width = static_cast<std::uint32_t>(image.width);
+  cloud.row_step = cloud.width * cloud.point_step;
+  cloud.is_dense = true;  // drivers lie: the node must not trust it
+  std::uint32_t holes = 0;
+  for (const auto& p : image.points) {
+    holes += p.allFinite() ? 0 : 1;
+  }
+  ASSERT_GT(holes, 0u);
+  const auto response = callInspect(cloudRequest(cloud));
+  EXPECT_EQ(response.report.error_code, "NOT_IMPLEMENTED") << response.message;
+  EXPECT_EQ(response.report.deviation.n_invalid, holes);
+  EXPECT_EQ(response.report.counts.scan_points, image.points.size() - holes);
+  EXPECT_GT(response.report.counts.scan_faces, image.points.size() - holes)
+      << "an organized cloud must be triangulated on its grid";
 }
 
 TEST(InspectionNode, LoadModelRefusesBadPathsAndUnitsAndKeepsTheModel) {

@@ -27,6 +27,7 @@ TEST(Inspect, ValidScanReportsNotImplementedNeverAnIdentityPoseAsAnAnswer) {
   EXPECT_EQ(result.verdict, Verdict::kNotEvaluated);
   EXPECT_EQ(result.counts.scan_points, 400u);
   EXPECT_EQ(result.counts.cad_vertices, 8u);
+  EXPECT_EQ(result.counts.scan_faces, 0u);
   ASSERT_EQ(result.timings.size(), 3u);
   EXPECT_EQ(result.timings[0].stage, "clean");
   EXPECT_EQ(result.timings[1].stage, "descriptors");
@@ -54,6 +55,8 @@ TEST(Inspect, OrganizedRangeImageWithHolesRunsThroughTheDescriptors) {
   EXPECT_EQ(result.status.code, StatusCode::kNotImplemented) << result.status.message;
   EXPECT_EQ(result.counts.non_finite, holes);
   EXPECT_EQ(result.counts.scan_points, scan.points.size() - holes);
+  // Two triangles per fully finite grid cell: far more faces than points means the grid was used.
+  EXPECT_GT(result.counts.scan_faces, 3 * result.counts.scan_points / 2);
   EXPECT_EQ(result.timings[1].stage, "descriptors");
 }
 
