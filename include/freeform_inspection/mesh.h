@@ -15,6 +15,9 @@ namespace freeform_inspection {
 /// @return a zero box for an empty set.
 BoundingBox computeBoundingBox(const Points& points);
 
+/// @brief Area of one triangle; its indices must be in range.
+double triangleArea(const Points& vertices, const Eigen::Vector3i& face);
+
 /// @brief Unit face normals from the vertex order (right-hand rule); zero for degenerate faces.
 Points computeFaceNormals(const Points& vertices, const Triangles& faces);
 

@@ -65,6 +65,13 @@ BoundingBox computeBoundingBox(const Points& points) {
   return box;
 }
 
+double triangleArea(const Points& vertices, const Eigen::Vector3i& face) {
+  const Eigen::Vector3d& a = vertices[static_cast<std::size_t>(face[0])];
+  return 0.5 * (vertices[static_cast<std::size_t>(face[1])] - a)
+                   .cross(vertices[static_cast<std::size_t>(face[2])] - a)
+                   .norm();
+}
+
 Points computeFaceNormals(const Points& vertices, const Triangles& faces) {
   Points normals;
   normals.reserve(faces.size());
@@ -114,7 +121,7 @@ MeshTopology analyzeTopology(const TriangleMesh& mesh) {
     const Eigen::Vector3d& b = mesh.vertices[f[1]];
     const Eigen::Vector3d& c = mesh.vertices[f[2]];
     topology.signed_volume += a.dot(b.cross(c)) / 6.0;  // divergence theorem, tetra to origin
-    topology.area += 0.5 * (b - a).cross(c - a).norm();
+    topology.area += triangleArea(mesh.vertices, f);
     for (int i = 0; i < 3; ++i) {
       const int from = f[i];
       const int to = f[(i + 1) % 3];

@@ -18,10 +18,7 @@ std::vector<double> cumulativeAreas(const TriangleMesh& mesh) {
   cumulative.reserve(mesh.faces.size());
   double total = 0.0;
   for (const auto& f : mesh.faces) {
-    const auto& v = mesh.vertices;
-    total += 0.5 * (v[static_cast<std::size_t>(f[1])] - v[static_cast<std::size_t>(f[0])])
-                       .cross(v[static_cast<std::size_t>(f[2])] - v[static_cast<std::size_t>(f[0])])
-                       .norm();
+    total += triangleArea(mesh.vertices, f);
     cumulative.push_back(total);
   }
   return cumulative;

@@ -25,6 +25,7 @@
 #include <Eigen/Geometry>
 
 #include "freeform_inspection/io.h"
+#include "freeform_inspection/mesh.h"
 
 namespace freeform_inspection {
 namespace tools {
@@ -119,10 +120,7 @@ std::vector<double> cumulativeAreas(const TriangleMesh& mesh) {
   cumulative.reserve(mesh.faces.size());
   double total = 0.0;
   for (const auto& f : mesh.faces) {
-    const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(f[0])];
-    const Eigen::Vector3d& b = mesh.vertices[static_cast<std::size_t>(f[1])];
-    const Eigen::Vector3d& c = mesh.vertices[static_cast<std::size_t>(f[2])];
-    total += 0.5 * (b - a).cross(c - a).norm();
+    total += triangleArea(mesh.vertices, f);
     cumulative.push_back(total);
   }
   return cumulative;

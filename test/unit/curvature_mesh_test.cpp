@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "freeform_inspection/curvature.h"
+#include "freeform_inspection/mesh.h"
 #include "freeform_inspection/mesh_adjacency.h"
 
 namespace freeform_inspection {
@@ -73,17 +74,6 @@ std::vector<double> errors(const std::vector<double>& values, double scale, doub
     out.push_back(std::abs(v * scale - target));
   }
   return out;
-}
-
-double triangleArea(const TriangleMesh& mesh) {
-  double total = 0.0;
-  for (const auto& f : mesh.faces) {
-    const auto& p = mesh.vertices;
-    total += 0.5 * (p[static_cast<std::size_t>(f[1])] - p[static_cast<std::size_t>(f[0])])
-                       .cross(p[static_cast<std::size_t>(f[2])] - p[static_cast<std::size_t>(f[0])])
-                       .norm();
-  }
-  return total;
 }
 
 // ---------------------------------------------------------------------------------- plane ---
@@ -165,7 +155,8 @@ TEST(CurvatureMeshSphere, ErrorShrinksWithTessellation) {
     EXPECT_LT(gaussian_error, row.gaussian_median_bound);
     EXPECT_GT(deficit, 0.0);  // the inscribed polyhedron is smaller than the sphere
     EXPECT_LT(deficit, row.area_deficit_bound);
-    EXPECT_NEAR(sum(angle.area), triangleArea(sphere), 1e-12 * triangleArea(sphere));
+    EXPECT_NEAR(
+        sum(angle.area), analyzeTopology(sphere).area, 1e-12 * analyzeTopology(sphere).area);
   }
 }
 
