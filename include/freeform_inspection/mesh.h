@@ -27,6 +27,12 @@ Points computeFaceNormals(const Points& vertices, const Triangles& faces);
 /// @param corners 3·n positions, triangle i uses corners 3i, 3i+1, 3i+2.
 TriangleMesh weldTriangleSoup(const Points& corners);
 
+/// @brief Splits every edge longer than `max_edge` at its midpoint, repeatedly, and
+/// re-triangulates each face by how many of its edges were split (red–green refinement: shared
+/// edges split once, so the result stays conforming, without T-junctions). Orientation is kept.
+/// Stops early rather than exceed `max_faces`. Face normals are recomputed.
+TriangleMesh refineLongEdges(const TriangleMesh& mesh, double max_edge, std::size_t max_faces);
+
 /// Edge and volume facts about a mesh, enough to tell a closed, oriented solid from the rest.
 struct MeshTopology {
   std::size_t edges = 0;               ///< distinct undirected edges

@@ -9,6 +9,8 @@
 
 #include "freeform_inspection/descriptor.h"
 #include "freeform_inspection/mesh.h"
+#include "freeform_inspection/mesh_query.h"
+#include "freeform_inspection/symmetry.h"
 #include "freeform_inspection/types.h"
 
 /// @file model.h
@@ -37,11 +39,20 @@ class Model {
   const MeshTopology& topology() const { return topology_; }
   const std::string& id() const { return id_; }
   const std::string& source() const { return source_; }  ///< file it was loaded from
-  /// Descriptors of the CAD vertices; their radii are the ones to use on every scan.
+  /// Descriptors of the CAD surface, computed on the mesh refined to the cell size (the original
+  /// vertices keep their indices, new ones follow); their radii are the ones to use on every
+  /// scan.
   const DescriptorResult& descriptors() const { return descriptors_; }
   /// Hash of the mesh and the descriptor settings: the key under which the descriptors may be
   /// cached (the same file content and configuration give the same key).
   const std::string& descriptorKey() const { return descriptor_key_; }
+  /// Exact closest-point and ray queries on the CAD triangles (ICP, verification, deviation).
+  const MeshQuery& query() const { return *query_; }
+  /// Surface-graph cell size [m]: the spatial resolution of the descriptors and of the global
+  /// registration's tolerances.
+  double cellSize() const;
+  /// Motions that map the model (nearly) onto itself, found once (symmetry.h).
+  const std::vector<Symmetry>& symmetries() const { return symmetries_; }
 
  private:
   TriangleMesh mesh_;
@@ -51,6 +62,9 @@ class Model {
   std::string source_;
   DescriptorResult descriptors_;
   std::string descriptor_key_;
+  std::unique_ptr<MeshQuery> query_;
+  double cell_ratio_ = 0.0;
+  std::vector<Symmetry> symmetries_;
 };
 
 /// Result of loading a model.

@@ -9,7 +9,11 @@
 
 #include <Eigen/Geometry>
 
+#include "freeform_inspection/correspondence.h"
 #include "freeform_inspection/descriptor.h"
+#include "freeform_inspection/features.h"
+#include "freeform_inspection/global_registration.h"
+#include "freeform_inspection/icp.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/scan_cleaning.h"
 #include "freeform_inspection/types.h"
@@ -31,6 +35,10 @@ struct ToleranceConfig {
 struct PipelineConfig {
   InputConfig input;
   DescriptorConfig descriptor;
+  FeatureConfig features;
+  CorrespondenceConfig correspondence;
+  GlobalRegistrationConfig registration;
+  IcpConfig icp;
   ToleranceConfig tolerance;
 };
 
@@ -98,6 +106,9 @@ struct InspectionResult {
   std::vector<Eigen::Isometry3d> alternatives;                   ///< other poses when ambiguous
   double rmse = std::numeric_limits<double>::quiet_NaN();        ///< [m] inlier RMS distance
   double fitness = 0.0;  ///< share of scan points within the inlier distance
+  double inlier_distance = std::numeric_limits<double>::quiet_NaN();  ///< [m] 3σ, bounded
+  double noise_sigma = std::numeric_limits<double>::quiet_NaN();  ///< [m] robust σ of residuals
+  double score = 0.0;  ///< verification score of the pose: share of the scan it explains
   DeviationStatistics deviation;
   std::vector<DefectRegion> defects;
   InspectionCounts counts;

@@ -20,12 +20,13 @@ namespace freeform_inspection {
 /// Why a stage stopped. Data-dependent failures are reported here, never thrown.
 enum class StatusCode {
   kOk = 0,
-  kInvalidInput,     ///< empty, non-finite, malformed or unreadable input
-  kDegenerateInput,  ///< well-formed but unusable: flat, collinear, zero area, too few points
-  kUnitsMismatch,    ///< sizes that differ by the factor of a unit mix-up
-  kNotConverged,     ///< an iterative stage ran out of iterations
-  kAmbiguous,        ///< several solutions explain the data equally well
-  kNotImplemented,   ///< the stage exists in the interface but not yet in the code
+  kInvalidInput,        ///< empty, non-finite, malformed or unreadable input
+  kDegenerateInput,     ///< well-formed but unusable: flat, collinear, zero area, too few points
+  kUnitsMismatch,       ///< sizes that differ by the factor of a unit mix-up
+  kNotConverged,        ///< an iterative stage ran out of iterations
+  kAmbiguous,           ///< several solutions explain the data equally well
+  kRegistrationFailed,  ///< no pose explains the scan (too little shape, wrong part)
+  kNotImplemented,      ///< the stage exists in the interface but not yet in the code
 };
 
 /// Short stable name of a status code ("ok", "invalid_input", ...), for logs and JSON.

@@ -10,15 +10,14 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
-#include <queue>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include "cloud_neighbours_internal.h"
 #include <Eigen/Eigenvalues>
 
 #include "freeform_inspection/curvature.h"
-#include "freeform_inspection/point_index.h"
 
 namespace freeform_inspection {
 namespace {
@@ -29,14 +28,14 @@ constexpr double kPi = 3.14159265358979323846;
 // collinear or coincident, and the fitted curvature would be noise.
 constexpr double kFitRankThreshold = 1e-6;
 
-// The k nearest neighbours of every point, row-major (point i's at [i·k, (i+1)·k)), nearest
-// first and including the point itself, plus the squared distance to the k-th.
+// The k nearest neighbours of every point (the first k columns of a shared table, nearest first
+// and including the point itself).
 struct Neighbourhoods {
+  const internal::NeighbourTable* table = nullptr;
   int k = 0;
-  std::vector<int> indices;
-  std::vector<double> kth_squared_distance;
 
-  const int* of(std::size_t point) const { return indices.data() + point * std::size_t(k); }
+  const int* of(std::size_t point) const { return table->of(point); }
+  std::size_t kth(std::size_t point) const { return std::size_t(of(point)[k - 1]); }
 };
 
 Status invalid(const std::string& message) {
@@ -85,25 +84,6 @@ Status checkInput(const Points& points, const Points& normals, const CloudCurvat
   return Status::success();
 }
 
-Neighbourhoods findNeighbourhoods(const Points& points, int k) {
-  const PointIndex index(points);
-  Neighbourhoods result;
-  result.k = k;
-  result.indices.resize(points.size() * std::size_t(k));
-  result.kth_squared_distance.resize(points.size());
-  const auto count = static_cast<std::ptrdiff_t>(points.size());
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t i = 0; i < count; ++i) {
-    const auto point = static_cast<std::size_t>(i);
-    const std::vector<Neighbour> found = index.nearest(points[point], k);
-    for (std::size_t j = 0; j < found.size(); ++j) {
-      result.indices[point * std::size_t(k) + j] = found[j].index;
-    }
-    result.kth_squared_distance[point] = found.back().squared_distance;
-  }
-  return result;
-}
-
 // Smallest eigenvector of the neighbourhood covariance: the direction the neighbours vary least.
 Eigen::Vector3d pcaNormal(const Points& points, const int* neighbours, int k) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -116,7 +96,8 @@ Eigen::Vector3d pcaNormal(const Points& points, const int* neighbours, int k) {
     const Eigen::Vector3d d = points[std::size_t(neighbours[j])] - mean;
     covariance += d * d.transpose();
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(covariance);  // closed form: the smallest eigenvalue is well separated
   return solver.eigenvectors().col(0).normalized();
 }
 
@@ -135,7 +116,7 @@ Points initialNormals(const Points& points,
   Points result(points.size());
   fixed.assign(points.size(), 0);
   const auto count = static_cast<std::ptrdiff_t>(points.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 1024)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
     const auto point = static_cast<std::size_t>(i);
     fixed[point] = hasGivenNormal(normals, point) ? 1 : 0;
@@ -147,58 +128,15 @@ Points initialNormals(const Points& points,
   return result;
 }
 
-// The kNN graph made symmetric (CSR), so orientation can travel along an edge either way.
-struct Graph {
-  std::vector<std::size_t> offsets;
-  std::vector<int> targets;
-};
-
-// Each kNN pair (i, j) gives edges i → j and j → i; duplicates are harmless to the tree.
-template <class Visit>
-void forEachKnnPair(const Neighbourhoods& hoods, std::size_t count, Visit visit) {
-  for (std::size_t i = 0; i < count; ++i) {
-    for (int j = 0; j < hoods.k; ++j) {
-      visit(i, std::size_t(hoods.of(i)[j]));
-    }
-  }
-}
-
-Graph symmetricGraph(const Neighbourhoods& hoods, std::size_t count) {
-  Graph graph;
-  graph.offsets.assign(count + 1, 0);
-  forEachKnnPair(hoods, count, [&](std::size_t i, std::size_t other) {
-    ++graph.offsets[i + 1];
-    ++graph.offsets[other + 1];
-  });
-  std::partial_sum(graph.offsets.begin(), graph.offsets.end(), graph.offsets.begin());
-  graph.targets.resize(graph.offsets.back());
-  std::vector<std::size_t> fill(graph.offsets.begin(), graph.offsets.end() - 1);
-  forEachKnnPair(hoods, count, [&](std::size_t i, std::size_t other) {
-    graph.targets[fill[i]++] = static_cast<int>(other);
-    graph.targets[fill[other]++] = static_cast<int>(i);
-  });
-  return graph;
-}
-
-struct TreeEdge {
-  double weight;
-  int to;
-  int from;
-};
-
-// Lightest edge first; ties by index so the tree (and so the result) is deterministic.
-struct HeavierEdge {
-  bool operator()(const TreeEdge& a, const TreeEdge& b) const {
-    return std::tie(a.weight, a.to, a.from) > std::tie(b.weight, b.to, b.from);
-  }
-};
-
-using EdgeQueue = std::priority_queue<TreeEdge, std::vector<TreeEdge>, HeavierEdge>;
+// Neighbours per point that the orientation tree may use. The tree needs a connected graph
+// along the surface, not the curvature fit's 24: with 12 the normals agree with the CAD's as
+// often as with 24 on the blade (99 % at 30k points, 99.7 % at 100k), at half the edges.
+constexpr int kOrientationNeighbours = 12;
 
 // Hoppe's weight (edges between nearly parallel normals first, so the orientation goes around
 // sharp edges last) plus a penalty for stepping along the normals: the two sides of a thin wall
 // (a blade's trailing edge) have parallel normals too, but the step between them is across the
-// surface, not along it, and following it would flip a whole side.
+// surface, not along it, and following it would flip a whole side. Symmetric: called with a < b.
 double orientationWeight(const Points& points,
                          const Points& normals,
                          std::size_t a,
@@ -208,46 +146,173 @@ double orientationWeight(const Points& points,
          std::abs(step.dot(normals[b]));
 }
 
-void pushEdges(int from,
-               const Graph& graph,
-               const Points& points,
-               const Points& normals,
-               const std::vector<char>& visited,
-               EdgeQueue& queue) {
-  const auto source = std::size_t(from);
-  for (std::size_t e = graph.offsets[source]; e < graph.offsets[source + 1]; ++e) {
-    const int to = graph.targets[e];
-    if (!visited[std::size_t(to)] && points[source] != points[std::size_t(to)]) {
-      queue.push({orientationWeight(points, normals, source, std::size_t(to)), to, from});
-    }
+// Whether the pair (point, column c of its row) is an edge this row owns: every pair is owned by
+// exactly one of its two rows (the lower index when each is among the other's neighbours).
+// Coincident points give no direction and are never joined.
+bool ownsPair(const Neighbourhoods& hoods, const Points& points, std::size_t point, int column) {
+  const auto other = std::size_t(hoods.of(point)[column]);
+  if (other == point || points[other] == points[point]) {
+    return false;
   }
+  if (other > point) {
+    return true;
+  }
+  const int* back = hoods.of(other);
+  return std::find(back, back + hoods.k, static_cast<int>(point)) == back + hoods.k;
 }
 
-// Prim's minimum spanning tree grown from the (already visited) seeds; each point it reaches is
-// flipped to agree with the tree point it was reached from. Returns the points reached.
+// An edge of the orientation graph, a < b. Sorting by (weight, a, b) is a strict total order,
+// so the spanning tree does not depend on how the edges were produced or sorted.
+struct WeightedEdge {
+  double weight;
+  std::uint32_t a;
+  std::uint32_t b;
+
+  bool operator<(const WeightedEdge& other) const {
+    return std::tie(weight, a, b) < std::tie(other.weight, other.a, other.b);
+  }
+};
+
+// Every pair of the orientation graph once, with its weight: counted per row, then filled at the
+// row's offset (the same list for any thread count).
+std::vector<WeightedEdge> orientationEdges(const Points& points,
+                                           const Points& normals,
+                                           const Neighbourhoods& hoods) {
+  const std::size_t count = points.size();
+  const auto signed_count = static_cast<std::ptrdiff_t>(count);
+  const auto k = std::size_t(hoods.k);
+  std::vector<char> owned(count * k);
+  std::vector<std::size_t> offsets(count + 1, 0);
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (std::ptrdiff_t i = 0; i < signed_count; ++i) {
+    const auto point = static_cast<std::size_t>(i);
+    for (int c = 0; c < hoods.k; ++c) {
+      const bool owns = ownsPair(hoods, points, point, c);
+      owned[point * k + std::size_t(c)] = owns ? 1 : 0;
+      offsets[point + 1] += owns ? 1 : 0;
+    }
+  }
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  std::vector<WeightedEdge> edges(offsets.back());
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (std::ptrdiff_t i = 0; i < signed_count; ++i) {
+    const auto point = static_cast<std::size_t>(i);
+    std::size_t next = offsets[point];
+    for (std::size_t c = 0; c < k; ++c) {
+      if (owned[point * k + c]) {
+        const auto other = std::size_t(hoods.of(point)[c]);
+        const std::size_t a = std::min(point, other);
+        const std::size_t b = std::max(point, other);
+        edges[next++] = {orientationWeight(points, normals, a, b),
+                         static_cast<std::uint32_t>(a),
+                         static_cast<std::uint32_t>(b)};
+      }
+    }
+  }
+  return edges;
+}
+
+// Sorts with both threads: the halves in parallel, then one merge. The order is total, so the
+// result is the same for any thread count.
+void sortEdges(std::vector<WeightedEdge>& edges) {
+  const auto middle = edges.begin() + static_cast<std::ptrdiff_t>(edges.size() / 2);
+#pragma omp parallel for schedule(static, 1)
+  for (int half = 0; half < 2; ++half) {
+    if (half == 0) {
+      std::sort(edges.begin(), middle);
+    } else {
+      std::sort(middle, edges.end());
+    }
+  }
+  std::inplace_merge(edges.begin(), middle, edges.end());
+}
+
+// Union-find with path halving; the root of a set is its smallest member.
+class DisjointSets {
+ public:
+  explicit DisjointSets(std::size_t n) : parent_(n) {
+    std::iota(parent_.begin(), parent_.end(), 0u);
+  }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
+    }
+    return x;
+  }
+  // False when a and b were already in one set.
+  bool unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) {
+      return false;
+    }
+    parent_[std::max(a, b)] = std::min(a, b);
+    return true;
+  }
+
+ private:
+  std::vector<std::uint32_t> parent_;
+};
+
+// The minimum spanning forest (Kruskal) of the orientation graph, with all the points that have
+// a given normal joined beforehand (their orientation is known, so the tree only has to reach
+// them, as a multi-source Prim would), as CSR adjacency.
+struct Forest {
+  std::vector<std::size_t> offsets;
+  std::vector<std::uint32_t> targets;
+};
+
+Forest spanningForest(std::size_t count,
+                      const std::vector<WeightedEdge>& sorted,
+                      const std::vector<int>& anchors) {
+  DisjointSets sets(count);
+  for (std::size_t i = 1; i < anchors.size(); ++i) {
+    sets.unite(static_cast<std::uint32_t>(anchors[0]), static_cast<std::uint32_t>(anchors[i]));
+  }
+  std::vector<const WeightedEdge*> tree;
+  tree.reserve(count);
+  for (const WeightedEdge& edge : sorted) {
+    if (sets.unite(edge.a, edge.b)) {
+      tree.push_back(&edge);
+    }
+  }
+  Forest forest;
+  forest.offsets.assign(count + 1, 0);
+  for (const WeightedEdge* edge : tree) {
+    ++forest.offsets[edge->a + 1];
+    ++forest.offsets[edge->b + 1];
+  }
+  std::partial_sum(forest.offsets.begin(), forest.offsets.end(), forest.offsets.begin());
+  forest.targets.resize(forest.offsets.back());
+  std::vector<std::size_t> fill(forest.offsets.begin(), forest.offsets.end() - 1);
+  for (const WeightedEdge* edge : tree) {
+    forest.targets[fill[edge->a]++] = edge->b;
+    forest.targets[fill[edge->b]++] = edge->a;
+  }
+  return forest;
+}
+
+// Walks the forest from the (already visited) seeds; each point reached is flipped to agree with
+// the tree point it was reached from. Returns the points reached, seeds included.
 std::vector<int> propagateOrientation(const std::vector<int>& seeds,
-                                      const Graph& graph,
-                                      const Points& points,
+                                      const Forest& forest,
                                       Points& normals,
                                       std::vector<char>& visited) {
-  EdgeQueue queue;
-  for (const int seed : seeds) {
-    pushEdges(seed, graph, points, normals, visited, queue);
-  }
   std::vector<int> reached = seeds;
-  while (!queue.empty()) {
-    const TreeEdge edge = queue.top();
-    queue.pop();
-    const auto to = std::size_t(edge.to);
-    if (visited[to]) {
-      continue;
+  for (std::size_t next = 0; next < reached.size(); ++next) {
+    const auto from = std::size_t(reached[next]);
+    for (std::size_t e = forest.offsets[from]; e < forest.offsets[from + 1]; ++e) {
+      const std::size_t to = forest.targets[e];
+      if (visited[to]) {
+        continue;
+      }
+      visited[to] = 1;
+      if (normals[from].dot(normals[to]) < 0.0) {
+        normals[to] = -normals[to];
+      }
+      reached.push_back(static_cast<int>(to));
     }
-    visited[to] = 1;
-    if (normals[std::size_t(edge.from)].dot(normals[to]) < 0.0) {
-      normals[to] = -normals[to];
-    }
-    reached.push_back(edge.to);
-    pushEdges(edge.to, graph, points, normals, visited, queue);
   }
   return reached;
 }
@@ -274,26 +339,34 @@ void orientAwayFromCentroid(const std::vector<int>& component,
   }
 }
 
-// Components holding given normals take their orientation from them; the others, from the
-// centroid vote.
+// Hoppe-style orientation along a minimum spanning tree of the kNN graph. Components holding
+// given normals take their orientation from them; the others, from the centroid vote. Nothing
+// to do when every point has a given normal.
 void orientNormals(const Points& points,
                    const Neighbourhoods& hoods,
                    const std::vector<char>& fixed,
                    Points& normals) {
-  const Graph graph = symmetricGraph(hoods, points.size());
-  std::vector<char> visited(fixed);
+  if (std::all_of(fixed.begin(), fixed.end(), [](char f) { return f != 0; })) {
+    return;
+  }
+  const Neighbourhoods near{hoods.table, std::min(hoods.k, kOrientationNeighbours)};
+  std::vector<WeightedEdge> edges = orientationEdges(points, normals, near);
+  sortEdges(edges);
   std::vector<int> anchors;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (fixed[i]) {
       anchors.push_back(static_cast<int>(i));
     }
   }
-  propagateOrientation(anchors, graph, points, normals, visited);
+  const Forest forest = spanningForest(points.size(), edges, anchors);
+  edges = {};
+  std::vector<char> visited(fixed);
+  propagateOrientation(anchors, forest, normals, visited);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!visited[i]) {
       visited[i] = 1;
       const std::vector<int> component =
-          propagateOrientation({static_cast<int>(i)}, graph, points, normals, visited);
+          propagateOrientation({static_cast<int>(i)}, forest, normals, visited);
       orientAwayFromCentroid(component, points, normals);
     }
   }
@@ -340,7 +413,8 @@ CurvatureFit fitShapeOperator(
     normal_matrix += rows.transpose() * rows;
     rhs += rows.transpose() * g;
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(normal_matrix);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(normal_matrix, Eigen::EigenvaluesOnly);
   const Eigen::Vector3d spread = eigen.eigenvalues();
   if (!(spread[2] > 0.0) || spread[0] < kFitRankThreshold * spread[2]) {
     return {};
@@ -357,10 +431,10 @@ std::size_t fitAllPoints(const Points& points, const Neighbourhoods& hoods, Curv
   out.area.assign(count, 0.0);
   std::vector<char> usable(count, 0);
   const auto signed_count = static_cast<std::ptrdiff_t>(count);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 1024)
   for (std::ptrdiff_t i = 0; i < signed_count; ++i) {
     const auto point = static_cast<std::size_t>(i);
-    const double kth = hoods.kth_squared_distance[point];
+    const double kth = internal::squaredDistance(points[point], points[hoods.kth(point)]);
     out.area[point] = kPi * kth / double(hoods.k);
     if (kth > 0.0) {
       const CurvatureFit fit =
@@ -374,15 +448,22 @@ std::size_t fitAllPoints(const Points& points, const Neighbourhoods& hoods, Curv
 
 }  // namespace
 
+namespace internal {
+
 CurvatureResult computeCloudCurvature(const Points& points,
                                       const Points& normals,
-                                      const CloudCurvatureConfig& config) {
+                                      const CloudCurvatureConfig& config,
+                                      int table_k,
+                                      NeighbourTable* table) {
   CurvatureResult result;
   result.status = checkInput(points, normals, config);
   if (!result.status.ok()) {
     return result;
   }
-  const Neighbourhoods hoods = findNeighbourhoods(points, config.neighbours);
+  if (table->k < config.neighbours) {
+    *table = nearestNeighbourTable(points, std::max(table_k, config.neighbours));
+  }
+  const Neighbourhoods hoods{table, config.neighbours};
   std::vector<char> fixed;
   result.normals = initialNormals(points, normals, hoods, fixed);
   orientNormals(points, hoods, fixed, result.normals);
@@ -393,6 +474,15 @@ CurvatureResult computeCloudCurvature(const Points& points,
                                         " neighbourhoods coincident or collinear)");
   }
   return result;
+}
+
+}  // namespace internal
+
+CurvatureResult computeCloudCurvature(const Points& points,
+                                      const Points& normals,
+                                      const CloudCurvatureConfig& config) {
+  internal::NeighbourTable table;
+  return internal::computeCloudCurvature(points, normals, config, config.neighbours, &table);
 }
 
 }  // namespace freeform_inspection

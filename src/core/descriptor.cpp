@@ -9,18 +9,25 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "cloud_neighbours_internal.h"
+
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/mesh_adjacency.h"
 
 namespace freeform_inspection {
 namespace {
 
+// On clouds the k-nearest-neighbour table is computed once, wide enough for both the curvature
+// fit and the surface edges, and handed back in `table` for cloudEdges.
 CurvatureResult pointCurvature(const Points& points,
                                const Triangles& faces,
                                const Points& normals,
-                               const DescriptorConfig& config) {
+                               const DescriptorConfig& config,
+                               internal::NeighbourTable* table) {
   if (faces.empty()) {
-    return computeCloudCurvature(points, normals, config.cloud_curvature);
+    const int table_k =
+        std::max(config.cloud_curvature.neighbours, config.cloud_edge_neighbours + 1);
+    return internal::computeCloudCurvature(points, normals, config.cloud_curvature, table_k, table);
   }
   const MeshAdjacency adjacency = buildMeshAdjacency(faces, points.size());
   return computeMeshCurvature(points, faces, adjacency, config.mesh_curvature);
@@ -181,17 +188,20 @@ DescriptorResult computeDescriptors(const Points& points,
   const bool thinned = faces.empty() && result.analysed.size() < points.size();
   const Points analysed_points = thinned ? select(points, result.analysed) : Points();
   const Points& surface = thinned ? analysed_points : points;
-  result.curvature =
-      pointCurvature(surface, faces, thinned ? select(normals, result.analysed) : normals, config);
+  internal::NeighbourTable table;
+  result.curvature = pointCurvature(
+      surface, faces, thinned ? select(normals, result.analysed) : normals, config, &table);
   result.status = result.curvature.status;
   if (!result.status.ok()) {
     return result;
   }
-  const std::vector<SurfaceEdge> edges =
-      faces.empty()
-          ? cloudEdges(
-                surface, result.curvature.normals, config.cloud_edge_neighbours, radii.front())
-          : meshEdges(faces);
+  const std::vector<SurfaceEdge> edges = faces.empty()
+                                             ? internal::cloudEdges(surface,
+                                                                    result.curvature.normals,
+                                                                    table,
+                                                                    config.cloud_edge_neighbours,
+                                                                    radii.front())
+                                             : meshEdges(faces);
   const SurfaceSamples samples{
       &surface, &result.curvature.normals, &result.curvature.area, &result.curvature.mean};
   result.graph = buildSurfaceGraph(samples, edges, config.cell_ratio * radii.front());

@@ -146,4 +146,83 @@ MeshTopology analyzeTopology(const TriangleMesh& mesh) {
   return topology;
 }
 
+namespace {
+
+// One refinement pass: returns false when no edge was longer than max_edge.
+bool splitLongEdges(TriangleMesh* mesh, double max_edge) {
+  std::unordered_map<std::uint64_t, int> midpoint;
+  const double max2 = max_edge * max_edge;
+  for (const auto& f : mesh->faces) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = f[e];
+      const int b = f[(e + 1) % 3];
+      const auto& pa = mesh->vertices[static_cast<std::size_t>(a)];
+      const auto& pb = mesh->vertices[static_cast<std::size_t>(b)];
+      if ((pa - pb).squaredNorm() > max2 && midpoint.count(edgeKey(a, b)) == 0) {
+        midpoint[edgeKey(a, b)] = static_cast<int>(mesh->vertices.size());
+        mesh->vertices.push_back(0.5 * (pa + pb));
+      }
+    }
+  }
+  if (midpoint.empty()) {
+    return false;
+  }
+  Triangles faces;
+  faces.reserve(mesh->faces.size() * 2);
+  for (const auto& f : mesh->faces) {
+    int m[3];
+    int split = 0;
+    for (int e = 0; e < 3; ++e) {
+      const auto found = midpoint.find(edgeKey(f[e], f[(e + 1) % 3]));
+      m[e] = found == midpoint.end() ? -1 : found->second;
+      split += m[e] >= 0 ? 1 : 0;
+    }
+    if (split == 0) {
+      faces.push_back(f);
+    } else if (split == 3) {
+      faces.emplace_back(f[0], m[0], m[2]);
+      faces.emplace_back(m[0], f[1], m[1]);
+      faces.emplace_back(m[2], m[1], f[2]);
+      faces.emplace_back(m[0], m[1], m[2]);
+    } else {
+      // Rotate so the (first) split edge is edge 0: corners c0 c1 c2, midpoint m0 on c0–c1.
+      int r = 0;
+      while (m[r] < 0) {
+        ++r;
+      }
+      if (split == 2 && m[(r + 2) % 3] >= 0) {
+        r = (r + 2) % 3;  // the two split edges are r and r+1
+      }
+      const int c0 = f[r];
+      const int c1 = f[(r + 1) % 3];
+      const int c2 = f[(r + 2) % 3];
+      const int m0 = m[r];
+      const int m1 = m[(r + 1) % 3];
+      if (split == 1) {
+        faces.emplace_back(c0, m0, c2);
+        faces.emplace_back(m0, c1, c2);
+      } else {  // edges c0–c1 (m0) and c1–c2 (m1) split
+        faces.emplace_back(c0, m0, c2);
+        faces.emplace_back(m0, c1, m1);
+        faces.emplace_back(m0, m1, c2);
+      }
+    }
+  }
+  mesh->faces = std::move(faces);
+  return true;
+}
+
+}  // namespace
+
+TriangleMesh refineLongEdges(const TriangleMesh& mesh, double max_edge, std::size_t max_faces) {
+  TriangleMesh refined = mesh;
+  if (max_edge > 0.0) {
+    // Each pass at most quadruples the faces: stop before a pass could exceed the cap.
+    while (refined.faces.size() * 4 <= max_faces && splitLongEdges(&refined, max_edge)) {
+    }
+  }
+  refined.face_normals = computeFaceNormals(refined.vertices, refined.faces);
+  return refined;
+}
+
 }  // namespace freeform_inspection

@@ -53,6 +53,19 @@ std::string descriptorCacheKey(const TriangleMesh& mesh, const DescriptorConfig&
   return hash.hex();
 }
 
+// CAD exports use large triangles where the surface is flat: refine them to the descriptor
+// resolution (edges no longer than a surface-graph cell) so every part of the surface has
+// cells, candidates can lie anywhere and cells weigh the area they stand for.
+DescriptorResult describeModel(const TriangleMesh& mesh,
+                               double diagonal,
+                               const DescriptorConfig& config) {
+  const std::vector<double> radii = kernelRadii(diagonal, config);
+  const double cell = radii.empty() ? 0.0 : config.cell_ratio * radii.front();
+  constexpr std::size_t kMaxFaces = 4000000;
+  const TriangleMesh refined = refineLongEdges(mesh, cell, kMaxFaces);
+  return computeDescriptors(refined.vertices, refined.faces, {}, radii, config);
+}
+
 }  // namespace
 
 std::optional<double> unitScale(const std::string& units) {
@@ -77,12 +90,15 @@ Model::Model(TriangleMesh mesh,
       topology_(analyzeTopology(mesh_)),
       id_(std::move(id)),
       source_(std::move(source)),
-      descriptors_(computeDescriptors(mesh_.vertices,
-                                      mesh_.faces,
-                                      {},
-                                      kernelRadii(bounds_.diagonal(), descriptor_config),
-                                      descriptor_config)),
-      descriptor_key_(descriptorCacheKey(mesh_, descriptor_config)) {}
+      descriptors_(describeModel(mesh_, bounds_.diagonal(), descriptor_config)),
+      descriptor_key_(descriptorCacheKey(mesh_, descriptor_config)),
+      query_(std::make_unique<MeshQuery>(mesh_)),
+      cell_ratio_(descriptor_config.cell_ratio),
+      symmetries_(findSymmetries(descriptors_, *query_, cellSize(), bounds_.diagonal())) {}
+
+double Model::cellSize() const {
+  return descriptors_.radii.empty() ? 0.0 : cell_ratio_ * descriptors_.radii.front();
+}
 
 ModelLoadResult loadModel(const std::string& path,
                           double scale,
@@ -104,6 +120,11 @@ ModelLoadResult loadModel(const std::string& path,
   if (model->topology().area <= 0.0) {
     result.status = Status::failure(StatusCode::kDegenerateInput,
                                     "CAD model '" + path + "' has zero surface area");
+    return result;
+  }
+  if (!model->query().status().ok()) {
+    result.status = model->query().status();
+    result.status.message = "CAD model '" + path + "': " + result.status.message;
     return result;
   }
   if (!model->descriptors().status.ok()) {

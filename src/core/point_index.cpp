@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <utility>
 
+#include "cloud_neighbours_internal.h"
 #include <nanoflann.hpp>
 
 namespace freeform_inspection {
@@ -37,14 +39,7 @@ constexpr std::size_t kLeafSize = 10;
 
 // Same summation order as nanoflann's L2_Simple_Adaptor, so reported distances are exactly the
 // ones the tree compared (and a brute-force search written the same way agrees bit for bit).
-double squaredDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  double sum = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const double diff = a[i] - b[i];
-    sum += diff * diff;
-  }
-  return sum;
-}
+using internal::squaredDistance;
 
 bool closerThan(double distance_a,
                 std::uint32_t index_a,
@@ -56,42 +51,49 @@ bool closerThan(double distance_a,
 // k-nearest result set with a deterministic tie rule (equal distances: lower index wins).
 // nanoflann's own KNNResultSet keeps whichever tie it meets first, which depends on the tree
 // layout; regular grids are full of exact ties, and neighbourhoods should not depend on it.
+// The buffers are the caller's (reset() between queries), so a batch of queries allocates
+// nothing; the bound the tree asks for at every node is cached, not recomputed.
 class OrderedKnnResult {
  public:
-  explicit OrderedKnnResult(std::size_t capacity) : capacity_(capacity) {
-    entries_.reserve(capacity + 1);
+  OrderedKnnResult(std::size_t capacity, double* distances, std::uint32_t* indices)
+      : capacity_(capacity), distances_(distances), indices_(indices) {}
+
+  void reset() {
+    count_ = 0;
+    worst_ = std::numeric_limits<double>::max();
   }
 
-  std::size_t size() const { return entries_.size(); }
-  bool full() const { return entries_.size() == capacity_; }
+  std::size_t size() const { return count_; }
+  bool full() const { return count_ == capacity_; }
 
   // The tree only offers points strictly closer than this; nudging it up lets exact ties in.
-  double worstDist() const {
-    if (!full()) {
-      return std::numeric_limits<double>::max();
-    }
-    return std::nextafter(entries_.back().first, std::numeric_limits<double>::infinity());
-  }
+  double worstDist() const { return worst_; }
 
   bool addPoint(double distance, std::uint32_t index) {
-    if (full() && !closerThan(distance, index, entries_.back().first, entries_.back().second)) {
+    if (full() && !closerThan(distance, index, distances_[count_ - 1], indices_[count_ - 1])) {
       return true;
     }
-    const auto position = std::find_if(entries_.begin(), entries_.end(), [&](const auto& entry) {
-      return closerThan(distance, index, entry.first, entry.second);
-    });
-    entries_.insert(position, {distance, index});
-    if (entries_.size() > capacity_) {
-      entries_.pop_back();
+    std::size_t i = full() ? count_ - 1 : count_++;  // the slot to fill, moving larger ones up
+    for (; i > 0 && closerThan(distance, index, distances_[i - 1], indices_[i - 1]); --i) {
+      distances_[i] = distances_[i - 1];
+      indices_[i] = indices_[i - 1];
+    }
+    distances_[i] = distance;
+    indices_[i] = index;
+    if (full()) {
+      worst_ = std::nextafter(distances_[count_ - 1], std::numeric_limits<double>::infinity());
     }
     return true;
   }
 
-  const std::vector<std::pair<double, std::uint32_t>>& entries() const { return entries_; }
+  std::uint32_t index(std::size_t i) const { return indices_[i]; }
 
  private:
   std::size_t capacity_;
-  std::vector<std::pair<double, std::uint32_t>> entries_;
+  double* distances_;
+  std::uint32_t* indices_;
+  std::size_t count_ = 0;
+  double worst_ = std::numeric_limits<double>::max();
 };
 
 }  // namespace
@@ -130,11 +132,14 @@ std::vector<Neighbour> PointIndex::nearest(const Eigen::Vector3d& query, int k) 
   if (k <= 0 || impl_->points.empty() || !query.allFinite()) {
     return result;
   }
-  OrderedKnnResult found(std::min(static_cast<std::size_t>(k), impl_->points.size()));
+  const std::size_t capacity = std::min(static_cast<std::size_t>(k), impl_->points.size());
+  std::vector<double> distances(capacity);
+  std::vector<std::uint32_t> indices(capacity);
+  OrderedKnnResult found(capacity, distances.data(), indices.data());
   impl_->tree->findNeighbors(found, query.data(), nanoflann::SearchParams());
   result.reserve(found.size());
-  for (const auto& entry : found.entries()) {
-    result.push_back(impl_->neighbour(query, entry.second));
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    result.push_back(impl_->neighbour(query, found.index(i)));
   }
   return result;
 }
@@ -164,4 +169,345 @@ std::size_t PointIndex::size() const {
   return impl_->input_size;
 }
 
+namespace internal {
+namespace {
+
+// Rows for `queries` (positions into `points`) from a kd-tree over all the points.
+void kdTreeRows(const Points& points,
+                const std::vector<std::uint32_t>& queries,
+                NeighbourTable& table) {
+  PointsAdaptor adaptor{&points};
+  const KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));
+  const auto width = static_cast<std::size_t>(table.k);
+  const auto count = static_cast<std::ptrdiff_t>(queries.size());
+#pragma omp parallel
+  {
+    std::vector<double> distances(width);
+    std::vector<std::uint32_t> indices(width);
+    OrderedKnnResult found(width, distances.data(), indices.data());
+#pragma omp for schedule(dynamic, 256)
+    for (std::ptrdiff_t q = 0; q < count; ++q) {
+      const std::size_t point = queries[static_cast<std::size_t>(q)];
+      found.reset();
+      tree.findNeighbors(found, points[point].data(), nanoflann::SearchParams());
+      int* row = table.indices.data() + point * width;
+      for (std::size_t j = 0; j < width; ++j) {
+        row[j] = static_cast<int>(indices[j]);
+      }
+    }
+  }
+}
+
+// Rows for a few `queries` by comparing with every point (cheaper than building a tree).
+void bruteForceRows(const Points& points,
+                    const std::vector<std::uint32_t>& queries,
+                    NeighbourTable& table) {
+  const auto width = static_cast<std::size_t>(table.k);
+  const auto count = static_cast<std::ptrdiff_t>(queries.size());
+#pragma omp parallel
+  {
+    std::vector<std::pair<double, std::uint32_t>> all(points.size());
+#pragma omp for schedule(dynamic, 1)
+    for (std::ptrdiff_t q = 0; q < count; ++q) {
+      const std::size_t point = queries[static_cast<std::size_t>(q)];
+      for (std::size_t j = 0; j < points.size(); ++j) {
+        all[j] = {squaredDistance(points[point], points[j]), static_cast<std::uint32_t>(j)};
+      }
+      const auto kth = all.begin() + static_cast<std::ptrdiff_t>(width - 1);
+      std::nth_element(all.begin(), kth, all.end());
+      std::sort(all.begin(), kth);
+      int* row = table.indices.data() + point * width;
+      for (std::size_t j = 0; j < width; ++j) {
+        row[j] = static_cast<int>(all[j].second);
+      }
+    }
+  }
+}
+
+// Squared k-th distance of the previous row in a cube × this = the first bound tried.
+constexpr double kBoundGrowth = 1.5;
+
+// Misses × points up to which brute force beats building a kd-tree.
+constexpr std::size_t kBruteForceWork = std::size_t(1) << 21;
+
+// Below this many points the kd-tree alone is fast enough.
+constexpr std::size_t kGridMinimumPoints = 4096;
+// Subsampling stride of the cell-size estimate.
+constexpr std::size_t kEstimateStride = 16;
+// Cube side over the estimated k-th neighbour distance: larger cubes mean more candidates per
+// query, smaller ones more rows the 27 cubes cannot prove exact.
+constexpr double kCellOverKth = 1.3;
+
+// A uniform grid of cubes of side h over the points, sorted by cube (CSR), with an open-addressing
+// hash from cube coordinates to the cube's range of points.
+class PointGrid {
+ public:
+  PointGrid(const Points& points, double cell) : points_(points), cell_(cell) {
+    origin_ = points.front();
+    for (const auto& p : points) {
+      origin_ = origin_.cwiseMin(p);
+    }
+    const std::size_t n = points.size();
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      keyed[i] = {key(coordinates(points[i])), static_cast<std::uint32_t>(i)};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    order_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      order_[i] = keyed[i].second;
+      if (i == 0 || keyed[i].first != keyed[i - 1].first) {
+        starts_.push_back(static_cast<std::uint32_t>(i));
+        keys_.push_back(keyed[i].first);
+      }
+    }
+    starts_.push_back(static_cast<std::uint32_t>(n));
+    std::size_t capacity = 16;
+    while (capacity < 2 * keys_.size()) {
+      capacity *= 2;
+    }
+    slots_.assign(capacity, -1);
+    for (std::size_t c = 0; c < keys_.size(); ++c) {
+      std::size_t slot = hash(keys_[c]);
+      while (slots_[slot] >= 0) {
+        slot = (slot + 1) & (capacity - 1);
+      }
+      slots_[slot] = static_cast<std::int64_t>(c);
+    }
+  }
+
+  std::size_t cubes() const { return keys_.size(); }
+  // Points of cube c: order()[starts(c) .. starts(c + 1)).
+  std::size_t start(std::size_t c) const { return starts_[c]; }
+  const std::vector<std::uint32_t>& order() const { return order_; }
+  Eigen::Array3i cubeOf(std::size_t c) const { return decode(keys_[c]); }
+
+  // Index of the cube at integer coordinates, or -1 when empty.
+  std::int64_t find(const Eigen::Array3i& at) const {
+    if ((at < 0).any() || (at >= kSpan).any()) {
+      return -1;
+    }
+    const std::uint64_t wanted = key(at);
+    for (std::size_t slot = hash(wanted);; slot = (slot + 1) & (slots_.size() - 1)) {
+      const std::int64_t c = slots_[slot];
+      if (c < 0 || keys_[static_cast<std::size_t>(c)] == wanted) {
+        return c;
+      }
+    }
+  }
+
+  // Lower corner of the cube at integer coordinates.
+  Eigen::Vector3d corner(const Eigen::Array3i& at) const {
+    return origin_ + cell_ * at.cast<double>().matrix();
+  }
+  double cell() const { return cell_; }
+
+ private:
+  static constexpr int kSpan = 1 << 21;
+
+  Eigen::Array3i coordinates(const Eigen::Vector3d& p) const {
+    const Eigen::Array3d c = ((p - origin_) / cell_).array().floor();
+    return c.min(double(kSpan - 1)).cast<int>();
+  }
+  static std::uint64_t key(const Eigen::Array3i& c) {
+    return (std::uint64_t(c.x()) << 42) | (std::uint64_t(c.y()) << 21) | std::uint64_t(c.z());
+  }
+  static Eigen::Array3i decode(std::uint64_t k) {
+    const std::uint64_t mask = kSpan - 1;
+    return {int(k >> 42), int((k >> 21) & mask), int(k & mask)};
+  }
+  std::size_t hash(std::uint64_t k) const {
+    return std::size_t((k * 0x9E3779B97F4A7C15ull) >> 20) & (slots_.size() - 1);
+  }
+
+  const Points& points_;
+  double cell_;
+  Eigen::Vector3d origin_;
+  std::vector<std::uint32_t> order_;
+  std::vector<std::uint32_t> starts_;
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::int64_t> slots_;
+};
+
+// The cube side: about the distance to the k-th neighbour, estimated from a kd-tree over every
+// 16th point (on a surface the k-th distance shrinks with the square root of the density). The
+// value only affects speed: every row is checked and the misses go to the kd-tree.
+double gridCell(const Points& points, std::size_t k) {
+  Points sample;
+  for (std::size_t i = 0; i < points.size(); i += kEstimateStride) {
+    sample.push_back(points[i]);
+  }
+  PointsAdaptor adaptor{&sample};
+  const KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));
+  const std::size_t width = std::min(k, sample.size());
+  std::vector<double> distances(width);
+  std::vector<std::uint32_t> indices(width);
+  OrderedKnnResult found(width, distances.data(), indices.data());
+  std::vector<double> kth;
+  for (std::size_t i = 0; i < sample.size(); i += kEstimateStride) {
+    found.reset();
+    tree.findNeighbors(found, sample[i].data(), nanoflann::SearchParams());
+    kth.push_back(std::sqrt(distances[width - 1]));
+  }
+  const auto at = kth.size() * 3 / 4;
+  std::nth_element(kth.begin(), kth.begin() + static_cast<std::ptrdiff_t>(at), kth.end());
+  return kCellOverKth * kth[at] / std::sqrt(double(kEstimateStride));
+}
+
+// Thread scratch of the grid search: the candidates around one cube, and one row.
+struct GridScratch {
+  std::vector<double> x, y, z;
+  std::vector<std::uint32_t> index;
+  std::vector<double> distance;
+  std::vector<std::pair<double, std::uint32_t>> found;
+};
+
+// Rows of the points of cube c from the 3×3×3 cubes around it. A row is exact when its k-th
+// distance is below the query's clearance to the outside of that block (any point outside is
+// farther, by at least one coordinate); the others are appended to `misses`.
+void gridRows(const Points& points,
+              const PointGrid& grid,
+              std::size_t c,
+              GridScratch& scratch,
+              NeighbourTable& table,
+              std::vector<std::uint32_t>& misses) {
+  const Eigen::Array3i cube = grid.cubeOf(c);
+  scratch.x.clear();
+  scratch.y.clear();
+  scratch.z.clear();
+  scratch.index.clear();
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = -1; dz <= 1; ++dz) {
+        const std::int64_t other = grid.find(cube + Eigen::Array3i(dx, dy, dz));
+        if (other < 0) {
+          continue;
+        }
+        const auto o = static_cast<std::size_t>(other);
+        for (std::size_t i = grid.start(o); i < grid.start(o + 1); ++i) {
+          const std::uint32_t point = grid.order()[i];
+          scratch.x.push_back(points[point].x());
+          scratch.y.push_back(points[point].y());
+          scratch.z.push_back(points[point].z());
+          scratch.index.push_back(point);
+        }
+      }
+    }
+  }
+  const auto width = static_cast<std::size_t>(table.k);
+  const Eigen::Vector3d low = grid.corner(cube - 1);
+  const Eigen::Vector3d high = grid.corner(cube + 2);
+  // Margin for the rounding of the cube coordinates and of the distances.
+  const double margin =
+      1e-9 * (grid.cell() + low.cwiseAbs().maxCoeff() + high.cwiseAbs().maxCoeff());
+  const std::size_t candidates = scratch.index.size();
+  scratch.distance.resize(candidates);
+  scratch.found.resize(candidates);
+  double previous_kth = std::numeric_limits<double>::infinity();
+  for (std::size_t i = grid.start(c); i < grid.start(c + 1); ++i) {
+    const std::uint32_t point = grid.order()[i];
+    const Eigen::Vector3d& q = points[point];
+    const double clearance = std::min((q - low).minCoeff(), (high - q).minCoeff()) - margin;
+    if (candidates < width || !(clearance > 0.0)) {
+      misses.push_back(point);
+      continue;
+    }
+    for (std::size_t j = 0; j < candidates; ++j) {
+      const double ex = q.x() - scratch.x[j];
+      const double ey = q.y() - scratch.y[j];
+      const double ez = q.z() - scratch.z[j];
+      double distance = 0.0;  // summed as squaredDistance() does
+      distance += ex * ex;
+      distance += ey * ey;
+      distance += ez * ez;
+      scratch.distance[j] = distance;
+    }
+    // Only candidates inside the clearance can be in a provably exact row. Neighbouring queries
+    // have similar k-th distances, so the previous row's (with a margin) usually bounds this one
+    // more tightly and leaves few candidates to select from; when it leaves fewer than k, the
+    // clearance is used. Either way the k nearest below a bound are exact when the bound is at
+    // most the clearance: every point left out is at least that far.
+    const double full_bound = clearance * clearance;
+    std::size_t inside = 0;
+    for (const double bound : {std::min(full_bound, kBoundGrowth * previous_kth), full_bound}) {
+      inside = 0;  // branch-free compaction
+      for (std::size_t j = 0; j < candidates; ++j) {
+        scratch.found[inside] = {scratch.distance[j], scratch.index[j]};
+        inside += scratch.distance[j] < bound ? 1 : 0;
+      }
+      if (inside >= width) {
+        break;
+      }
+    }
+    if (inside < width) {
+      misses.push_back(point);
+      continue;
+    }
+    // (distance, index) pairs order exactly as closerThan(): nearest first, ties by index.
+    const auto end = scratch.found.begin() + static_cast<std::ptrdiff_t>(inside);
+    const auto kth = scratch.found.begin() + static_cast<std::ptrdiff_t>(width - 1);
+    std::nth_element(scratch.found.begin(), kth, end);
+    previous_kth = kth->first;
+    std::sort(scratch.found.begin(), kth);
+    int* row = table.indices.data() + std::size_t(point) * width;
+    for (std::size_t j = 0; j < width; ++j) {
+      row[j] = static_cast<int>(scratch.found[j].second);
+    }
+  }
+}
+
+}  // namespace
+
+// Large sets: a uniform grid with cubes about the k-th neighbour distance, all points of a cube
+// answered from the 27 cubes around it (a few dozen candidates, contiguous in memory); rows that
+// the block cannot prove exact, and small sets, go to the kd-tree. Either way a row is the exact
+// k nearest with the kd-tree's distance and tie rule, so the table does not depend on the path a
+// row took, nor on the thread count (each row is written once).
+NeighbourTable nearestNeighbourTable(const Points& points, int k) {
+  NeighbourTable table;
+  table.k = static_cast<int>(std::min(static_cast<std::size_t>(std::max(k, 0)), points.size()));
+  if (table.k == 0) {
+    return table;
+  }
+  const auto width = static_cast<std::size_t>(table.k);
+  table.indices.resize(points.size() * width);
+  std::vector<std::uint32_t> misses;
+  const double cell = points.size() >= kGridMinimumPoints ? gridCell(points, width) : 0.0;
+  if (!(cell > 0.0) || !std::isfinite(cell)) {
+    misses.resize(points.size());
+    std::iota(misses.begin(), misses.end(), 0u);
+    kdTreeRows(points, misses, table);
+    return table;
+  }
+  const PointGrid grid(points, cell);
+  const auto cubes = static_cast<std::ptrdiff_t>(grid.cubes());
+  std::vector<std::vector<std::uint32_t>> cube_misses(grid.cubes());
+#pragma omp parallel
+  {
+    GridScratch scratch;
+#pragma omp for schedule(dynamic, 64)
+    for (std::ptrdiff_t c = 0; c < cubes; ++c) {
+      gridRows(points,
+               grid,
+               static_cast<std::size_t>(c),
+               scratch,
+               table,
+               cube_misses[static_cast<std::size_t>(c)]);
+    }
+  }
+  for (const auto& list : cube_misses) {
+    misses.insert(misses.end(), list.begin(), list.end());
+  }
+  if (misses.empty()) {
+    return table;
+  }
+  if (misses.size() * points.size() <= kBruteForceWork) {
+    bruteForceRows(points, misses, table);
+  } else {
+    kdTreeRows(points, misses, table);
+  }
+  return table;
+}
+
+}  // namespace internal
 }  // namespace freeform_inspection

@@ -18,6 +18,8 @@ const char* toString(StatusCode code) {
       return "not_converged";
     case StatusCode::kAmbiguous:
       return "ambiguous";
+    case StatusCode::kRegistrationFailed:
+      return "registration_failed";
     case StatusCode::kNotImplemented:
       return "not_implemented";
   }

@@ -7,8 +7,9 @@
 #include <cstdint>
 #include <numeric>
 
+#include "cloud_neighbours_internal.h"
+
 #include "freeform_inspection/mesh.h"
-#include "freeform_inspection/point_index.h"
 
 namespace freeform_inspection {
 namespace {
@@ -99,29 +100,45 @@ void accumulateCells(const SurfaceSamples& s, SurfaceGraph* graph, std::size_t c
   }
 }
 
+// Neighbours of every cell, sorted and each once: bucketed by cell (counting sort), then each
+// short bucket sorted on its own.
 void linkCells(const std::vector<SurfaceEdge>& edges, SurfaceGraph* graph) {
-  std::vector<std::pair<int, int>> links;
-  links.reserve(2 * edges.size());
+  const std::size_t cells = graph->size();
+  const auto cellOf = [&](int point) { return graph->point_cell[static_cast<std::size_t>(point)]; };
+  std::vector<std::size_t> start(cells + 1, 0);
   for (const auto& [a, b] : edges) {
-    const int ca = graph->point_cell[static_cast<std::size_t>(a)];
-    const int cb = graph->point_cell[static_cast<std::size_t>(b)];
+    const int ca = cellOf(a);
+    const int cb = cellOf(b);
     if (ca >= 0 && cb >= 0 && ca != cb) {
-      links.emplace_back(ca, cb);
-      links.emplace_back(cb, ca);
+      ++start[static_cast<std::size_t>(ca) + 1];
+      ++start[static_cast<std::size_t>(cb) + 1];
     }
   }
-  std::sort(links.begin(), links.end());
-  links.erase(std::unique(links.begin(), links.end()), links.end());
-  graph->offsets.assign(graph->size() + 1, 0);
-  for (const auto& link : links) {
-    ++graph->offsets[static_cast<std::size_t>(link.first) + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<int> buckets(start.back());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (const auto& [a, b] : edges) {
+    const int ca = cellOf(a);
+    const int cb = cellOf(b);
+    if (ca >= 0 && cb >= 0 && ca != cb) {
+      buckets[fill[static_cast<std::size_t>(ca)]++] = cb;
+      buckets[fill[static_cast<std::size_t>(cb)]++] = ca;
+    }
   }
-  std::partial_sum(graph->offsets.begin(), graph->offsets.end(), graph->offsets.begin());
-  for (const auto& [from, to] : links) {
-    graph->neighbours.push_back(to);
-    graph->lengths.push_back((graph->centroids[static_cast<std::size_t>(from)] -
-                              graph->centroids[static_cast<std::size_t>(to)])
-                                 .norm());
+  graph->offsets.assign(cells + 1, 0);
+  graph->neighbours.clear();
+  graph->lengths.clear();
+  for (std::size_t from = 0; from < cells; ++from) {
+    const auto first = buckets.begin() + static_cast<std::ptrdiff_t>(start[from]);
+    const auto last = buckets.begin() + static_cast<std::ptrdiff_t>(start[from + 1]);
+    std::sort(first, last);
+    const auto end = std::unique(first, last);
+    for (auto to = first; to != end; ++to) {
+      graph->neighbours.push_back(*to);
+      graph->lengths.push_back(
+          (graph->centroids[from] - graph->centroids[static_cast<std::size_t>(*to)]).norm());
+    }
+    graph->offsets[from + 1] = graph->neighbours.size();
   }
 }
 
@@ -162,30 +179,91 @@ std::vector<SurfaceEdge> meshEdges(const Triangles& faces) {
   return edges;
 }
 
+namespace internal {
+
+// Each pair is kept by one of its two rows only (the lower index, unless it is not among the
+// other's neighbours), so no sort is needed to remove duplicates; the acceptance test is
+// symmetric, so either row decides the same. Counted, then filled at per-row offsets: the same
+// list for any thread count.
+std::vector<SurfaceEdge> cloudEdges(const Points& points,
+                                    const Points& normals,
+                                    const NeighbourTable& table,
+                                    int neighbours,
+                                    double max_length) {
+  const int columns = std::min(neighbours + 1, table.k);
+  const double max_squared = max_length * max_length;
+  const auto accepted = [&](std::size_t i, int column) {
+    const auto j = static_cast<std::size_t>(table.of(i)[column]);
+    if (j == i || squaredDistance(points[i], points[j]) > max_squared) {
+      return false;
+    }
+    const bool same_side = normals.empty() || normals[i].isZero() || normals[j].isZero() ||
+                           normals[i].dot(normals[j]) > 0.0;
+    if (!same_side) {
+      return false;
+    }
+    const int* back = table.of(j);
+    return j > i || std::find(back, back + columns, static_cast<int>(i)) == back + columns;
+  };
+  const std::size_t count = points.size();
+  const auto signed_count = static_cast<std::ptrdiff_t>(count);
+  const auto width = static_cast<std::size_t>(columns);
+  std::vector<char> keep(count * width);
+  std::vector<std::size_t> offsets(count + 1, 0);
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (std::ptrdiff_t p = 0; p < signed_count; ++p) {
+    const auto i = static_cast<std::size_t>(p);
+    for (int c = 0; c < columns; ++c) {
+      const bool kept = accepted(i, c);
+      keep[i * width + static_cast<std::size_t>(c)] = kept ? 1 : 0;
+      offsets[i + 1] += kept ? 1 : 0;
+    }
+  }
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  std::vector<SurfaceEdge> edges(offsets.back());
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (std::ptrdiff_t p = 0; p < signed_count; ++p) {
+    const auto i = static_cast<std::size_t>(p);
+    std::size_t next = offsets[i];
+    for (std::size_t c = 0; c < width; ++c) {
+      if (keep[i * width + c]) {
+        const auto j = static_cast<std::size_t>(table.of(i)[c]);
+        edges[next++] = {static_cast<int>(std::min(i, j)), static_cast<int>(std::max(i, j))};
+      }
+    }
+  }
+  return edges;
+}
+
+}  // namespace internal
+
 std::vector<SurfaceEdge> cloudEdges(const Points& points,
                                     const Points& normals,
                                     int neighbours,
                                     double max_length) {
-  const PointIndex index(points);
-  std::vector<std::vector<SurfaceEdge>> per_point(points.size());
-#pragma omp parallel for schedule(static)
+  std::vector<int> finite;
+  Points kept;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    for (const Neighbour& nb : index.nearest(points[i], neighbours + 1)) {
-      const auto j = static_cast<std::size_t>(nb.index);
-      const bool same_side = normals.empty() || normals[i].isZero() || normals[j].isZero() ||
-                             normals[i].dot(normals[j]) > 0.0;
-      if (j != i && nb.squared_distance <= max_length * max_length && same_side) {
-        per_point[i].emplace_back(static_cast<int>(std::min(i, j)),
-                                  static_cast<int>(std::max(i, j)));
-      }
+    if (points[i].allFinite()) {
+      finite.push_back(static_cast<int>(i));
+      kept.push_back(points[i]);
     }
   }
-  std::vector<SurfaceEdge> edges;
-  for (const auto& list : per_point) {
-    edges.insert(edges.end(), list.begin(), list.end());
+  const Points kept_normals = normals.empty() ? Points() : [&] {
+    Points selected;
+    for (const int i : finite) {
+      selected.push_back(normals[static_cast<std::size_t>(i)]);
+    }
+    return selected;
+  }();
+  const internal::NeighbourTable table = internal::nearestNeighbourTable(kept, neighbours + 1);
+  std::vector<SurfaceEdge> edges =
+      internal::cloudEdges(kept, kept_normals, table, neighbours, max_length);
+  for (auto& [a, b] : edges) {  // back to the caller's indices (increasing, so still a < b)
+    a = finite[static_cast<std::size_t>(a)];
+    b = finite[static_cast<std::size_t>(b)];
   }
   std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   return edges;
 }
 

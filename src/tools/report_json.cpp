@@ -80,7 +80,7 @@ nlohmann::ordered_json countsJson(const InspectionCounts& c) {
 nlohmann::ordered_json toJson(const InspectionResult& result) {
   nlohmann::ordered_json json;
   json["status"] = toString(result.registration);
-  json["message"] = result.status.ok() ? "" : result.status.message;
+  json["message"] = result.status.message;
   json["error_code"] = toString(result.status.code);
   json["transform_cad_from_scan"] = matrixRows(result.T_cad_scan);
   json["alternatives"] = nlohmann::ordered_json::array();

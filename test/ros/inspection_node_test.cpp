@@ -4,6 +4,7 @@
 // rostest client: the node starts with the shipped blade, publishes the CAD marker, answers
 // Inspect with a status for every kind of request and keeps serving after bad ones.
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
+#include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/Marker.h>
 
 #include "freeform_inspection/io.h"
@@ -87,13 +89,33 @@ TEST(InspectionNode, PublishesLatchedCadMarkerInMetresInPartFrame) {
   EXPECT_LT(max_abs, 0.5) << "the blade is ~0.1 m: mm not converted to metres?";
 }
 
-TEST(InspectionNode, AnswersSampleScanHonestlyWhileRegistrationIsMissing) {
+// T_cad_scan of the sample scan, as generate_blade wrote it (4 × 4, row-major).
+Eigen::Isometry3d sampleTruth() {
+  std::ifstream file(param("sample_truth"));
+  Eigen::Matrix4d m;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      file >> m(r, c);
+    }
+  }
+  EXPECT_TRUE(file) << "cannot read " << param("sample_truth");
+  return Eigen::Isometry3d(m);
+}
+
+TEST(InspectionNode, RegistersTheSampleScanAndReportsThePartPose) {
   const auto scan = freeform_inspection::loadScan(param("sample_scan"), 1.0);
   ASSERT_TRUE(scan.status.ok()) << scan.status.message;
   const auto response = callInspect(cloudRequest(toCloud(scan.scan.points, "scanner")));
-  EXPECT_EQ(response.status, Inspect::Response::ERROR);
-  EXPECT_EQ(response.report.error_code, "NOT_IMPLEMENTED");
-  EXPECT_NE(response.message.find("not implemented"), std::string::npos) << response.message;
+  // Registered; the verdict (deviation against tolerances) is not computed yet.
+  EXPECT_EQ(response.status, Inspect::Response::NOT_EVALUATED) << response.message;
+  EXPECT_EQ(response.report.registration_status, "ok") << response.message;
+  // The report carries the part's pose in the scan frame: inverse(T_cad_scan).
+  const Eigen::Isometry3d part_in_scan = tf2::transformToEigen(response.report.transform);
+  const Eigen::Isometry3d truth = sampleTruth().inverse();
+  EXPECT_LT(
+      Eigen::AngleAxisd(part_in_scan.linear().transpose() * truth.linear()).angle() * 180.0 / M_PI,
+      0.5);
+  EXPECT_LT((part_in_scan.translation() - truth.translation()).norm(), 0.0005);
   EXPECT_EQ(response.report.part_id, "sn-0001");
   EXPECT_EQ(response.report.counts.scan_points, scan.scan.points.size());
   EXPECT_EQ(response.report.counts.scan_faces, 0u) << "an unorganized cloud has no faces";
@@ -137,7 +159,7 @@ TEST(InspectionNode, RefusesBadRequestsWithReasonsAndKeepsServing) {
   EXPECT_NE(units.message.find("units"), std::string::npos) << units.message;
 
   const auto good = callInspect(cloudRequest(toCloud(scan.scan.points, "s")));
-  EXPECT_EQ(good.report.error_code, "NOT_IMPLEMENTED") << "node stopped serving after bad input";
+  EXPECT_EQ(good.report.registration_status, "ok") << "node stopped serving after bad input";
 }
 
 TEST(InspectionNode, OrganizedCloudWithNanPixelsIsReadOnItsGrid) {
@@ -158,7 +180,8 @@ TEST(InspectionNode, OrganizedCloudWithNanPixelsIsReadOnItsGrid) {
   }
   ASSERT_GT(holes, 0u);
   const auto response = callInspect(cloudRequest(cloud));
-  EXPECT_EQ(response.report.error_code, "NOT_IMPLEMENTED") << response.message;
+  // A sphere against the blade: never registered, and said so.
+  EXPECT_NE(response.report.registration_status, "ok") << response.message;
   EXPECT_EQ(response.report.deviation.n_invalid, holes);
   EXPECT_EQ(response.report.counts.scan_points, image.points.size() - holes);
   EXPECT_GT(response.report.counts.scan_faces, image.points.size() - holes)

@@ -12,6 +12,11 @@
 #include <gtest/gtest.h>
 
 #include "freeform_inspection/curvature.h"
+#include "freeform_inspection/point_index.h"
+#include "freeform_inspection/surface_graph.h"
+
+// The shared k-nearest-neighbour table is internal to the core library; tested here directly.
+#include "../../src/core/cloud_neighbours_internal.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -288,6 +293,66 @@ TEST(CloudCurvature, OrganizedSaddleWithSensorNormalsMatchesTheAnalyticCurvature
     error.push_back(std::abs(result.mean[i] - expected) * scale);
   }
   EXPECT_LT(median(error), 0.005);  // measured 0.0015 (95th percentile 0.008)
+}
+
+// Rows of the shared table must be exactly PointIndex::nearest, whichever path (grid or kd-tree)
+// answered them: a random sphere, a regular grid full of exact ties, and duplicated points.
+TEST(NeighbourTable, EveryRowIsTheKdTreeAnswer) {
+  analytic::Cloud sphere = analytic::sampleSphere(kRadius, kSphereCount, kSeed);
+  Points grid;
+  for (int i = 0; i < 90; ++i) {
+    for (int j = 0; j < 90; ++j) {
+      grid.emplace_back(0.001 * i, 0.001 * j, 0.0);
+    }
+  }
+  Points duplicated = sphere.points;
+  for (std::size_t i = 0; i < 200; ++i) {
+    duplicated.push_back(sphere.points[i * 13]);
+  }
+  Points sparse(sphere.points.begin(), sphere.points.begin() + 3000);  // below the grid size
+  for (const Points* points : {&sphere.points, &grid, &duplicated, &sparse}) {
+    for (const int k : {9, 24}) {
+      const internal::NeighbourTable table = internal::nearestNeighbourTable(*points, k);
+      ASSERT_EQ(table.k, k);
+      const PointIndex index(*points);
+      std::size_t differing = 0;
+      for (std::size_t i = 0; i < points->size(); ++i) {
+        const std::vector<Neighbour> expected = index.nearest((*points)[i], k);
+        for (int j = 0; j < k; ++j) {
+          differing += expected[std::size_t(j)].index == table.of(i)[j] ? 0 : 1;
+        }
+      }
+      EXPECT_EQ(differing, 0u) << points->size() << " points, k = " << k;
+    }
+  }
+  const Points tiny(sphere.points.begin(), sphere.points.begin() + 40);
+  EXPECT_EQ(internal::nearestNeighbourTable(tiny, 50).k, 40);  // clamped to the set
+  EXPECT_EQ(internal::nearestNeighbourTable(Points(), 24).k, 0);
+}
+
+// cloudEdges: each accepted kNN pair once, as (lower, higher), sorted; same as the definition.
+TEST(CloudEdges, AreTheAcceptedKnnPairsOnce) {
+  const analytic::Cloud sphere = analytic::sampleSphere(kRadius, kSphereCount, kSeed);
+  Points normals = sphere.normals;
+  for (std::size_t i = 0; i < normals.size(); i += 7) {
+    normals[i] = -normals[i];  // some pairs face opposite sides
+  }
+  const double max_length = 0.0015;
+  const std::vector<SurfaceEdge> edges = cloudEdges(sphere.points, normals, 8, max_length);
+  const PointIndex index(sphere.points);
+  std::vector<SurfaceEdge> expected;
+  for (std::size_t i = 0; i < sphere.points.size(); ++i) {
+    for (const Neighbour& nb : index.nearest(sphere.points[i], 9)) {
+      const auto j = static_cast<std::size_t>(nb.index);
+      if (j != i && nb.squared_distance <= max_length * max_length &&
+          normals[i].dot(normals[j]) > 0.0) {
+        expected.emplace_back(int(std::min(i, j)), int(std::max(i, j)));
+      }
+    }
+  }
+  std::sort(expected.begin(), expected.end());
+  expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
+  EXPECT_EQ(edges, expected);
 }
 
 #ifdef _OPENMP

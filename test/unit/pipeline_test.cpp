@@ -18,20 +18,26 @@ Model boxModel() {
   return Model(test::makeBox(kHalf), "box", "test");
 }
 
-TEST(Inspect, ValidScanReportsNotImplementedNeverAnIdentityPoseAsAnAnswer) {
+TEST(Inspect, FeaturelessScanFailsWithAReasonNeverAnIdentityPose) {
+  // 400 points on a box whose CAD has 8 vertices, seen at the identity: too sparse for rare
+  // features to be congruent. The result must say why, not return the identity as an answer.
   Scan scan;
   scan.points = test::sampleBoxSurface(kHalf, 400, 3);
   const InspectionResult result = inspect(boxModel(), scan, PipelineConfig());
-  EXPECT_EQ(result.status.code, StatusCode::kNotImplemented);
-  EXPECT_EQ(result.registration, RegistrationStatus::kFailed);
+  if (result.registration == RegistrationStatus::kFailed) {
+    EXPECT_EQ(result.status.code, StatusCode::kRegistrationFailed);
+    EXPECT_FALSE(result.status.message.empty());
+  } else {
+    EXPECT_TRUE(result.registration == RegistrationStatus::kAmbiguous) << result.status.message;
+  }
   EXPECT_EQ(result.verdict, Verdict::kNotEvaluated);
   EXPECT_EQ(result.counts.scan_points, 400u);
   EXPECT_EQ(result.counts.cad_vertices, 8u);
   EXPECT_EQ(result.counts.scan_faces, 0u);
-  ASSERT_EQ(result.timings.size(), 3u);
+  ASSERT_GE(result.timings.size(), 3u);
   EXPECT_EQ(result.timings[0].stage, "clean");
   EXPECT_EQ(result.timings[1].stage, "descriptors");
-  EXPECT_EQ(result.timings[2].stage, "total");
+  EXPECT_EQ(result.timings.back().stage, "total");
   EXPECT_GE(result.timings.back().seconds, result.timings.front().seconds);
 }
 
@@ -52,7 +58,8 @@ TEST(Inspect, OrganizedRangeImageWithHolesRunsThroughTheDescriptors) {
   }
   ASSERT_GT(holes, 0u);
   const InspectionResult result = inspect(sphere, scan, PipelineConfig());
-  EXPECT_EQ(result.status.code, StatusCode::kNotImplemented) << result.status.message;
+  // A sphere has no rare features: its pose cannot be fixed, and the pipeline says so.
+  EXPECT_NE(result.registration, RegistrationStatus::kOk) << result.status.message;
   EXPECT_EQ(result.counts.non_finite, holes);
   EXPECT_EQ(result.counts.scan_points, scan.points.size() - holes);
   // Two triangles per fully finite grid cell: far more faces than points means the grid was used.

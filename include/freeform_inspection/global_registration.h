@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "freeform_inspection/correspondence.h"
+#include "freeform_inspection/mesh_query.h"
+#include "freeform_inspection/surface_graph.h"
+#include "freeform_inspection/types.h"
+
+/// @file global_registration.h
+/// Global registration (paper §2.6, §3.6.1) with the triangle check of §3.5: feature triplets
+/// whose candidate triplets form congruent triangles give rigid fits (Kabsch/Umeyama); each fit
+/// is scored by eq. 14 over all features; the best fits are then verified against the whole
+/// scan (truncated distance to the CAD surface with normal agreement), so a wrong triplet or a
+/// flip of a near-symmetric part loses to the right pose.
+
+namespace freeform_inspection {
+
+/// Global-registration settings. Lengths in surface-graph cells (the descriptor resolution).
+struct GlobalRegistrationConfig {
+  double pair_tolerance_cells = 3.0;   ///< |d_scan − d_CAD| allowed between two correspondences
+  double normal_tolerance_deg = 40.0;  ///< normal angles that must agree (pair and fit checks)
+  double min_side_ratio = 0.3;         ///< triplet sides at least this × r_max (a stable fit)
+  std::size_t max_fits = 60000;        ///< cap on rigid fits evaluated (rarest triplets first)
+  int verified_hypotheses = 128;       ///< best fits by eq. 14 verified against the whole scan
+  std::size_t verification_points = 1500;    ///< scan cells used for verification (at most)
+  double verification_distance_cells = 2.5;  ///< truncation distance of the verification score
+  int refined_hypotheses = 12;  ///< best verified poses refined by ICP before the final choice
+  /// Two distinct refined poses whose scores are within this ratio are reported as ambiguous.
+  double ambiguity_ratio = 0.93;
+  double min_score = 0.4;    ///< a final verification score below this is a failed registration
+  double min_fitness = 0.6;  ///< a final ICP fitness below this is a failed registration
+};
+
+/// @brief One message per invalid field; empty when valid.
+std::vector<std::string> validate(const GlobalRegistrationConfig& config);
+
+/// A candidate pose.
+struct PoseHypothesis {
+  Eigen::Isometry3d T_cad_scan = Eigen::Isometry3d::Identity();
+  int features_explained = 0;  ///< features within the pair tolerance of one of their candidates
+  double error = 0.0;          ///< eq. 14 (truncated, nearest candidate) [m^2]
+  double score = 0.0;          ///< verification score in [0, 1]: share of the scan explained
+  int feature_triplet[3] = {-1, -1, -1};  ///< indices into the feature list
+  int cad_triplet[3] = {-1, -1, -1};      ///< CAD cells they were matched to
+};
+
+/// Result of the global stage.
+struct GlobalRegistrationResult {
+  Status status;
+  std::vector<PoseHypothesis> hypotheses;  ///< verified, distinct, best score first
+  std::size_t consistent_triplets = 0;     ///< triplets that passed the triangle check
+  std::size_t correspondences = 0;         ///< distinct (feature, CAD cell) pairs in those triplets
+};
+
+/// Points (with unit outward normals) a pose is verified on.
+struct VerificationSet {
+  Points points;   ///< [m] scan frame
+  Points normals;  ///< unit, outward (zero where unknown: no normal check)
+};
+
+/// @brief Up to `count` scan cells, spread evenly over the cell list (deterministic).
+VerificationSet makeVerificationSet(const SurfaceGraph& scan, std::size_t count);
+
+/// @brief Share of the set the pose explains: mean over points of max(0, 1 − d²/τ²) where d is
+/// the distance to the CAD surface, counted only where the normals agree.
+double verificationScore(const Eigen::Isometry3d& T_cad_scan,
+                         const VerificationSet& set,
+                         const MeshQuery& cad,
+                         double truncation,
+                         double normal_tolerance_deg);
+
+/// @brief True when two poses differ by more than `angle_deg` or move `reference` (scan frame)
+/// by more than `distance`.
+bool distinctPoses(const Eigen::Isometry3d& a,
+                   const Eigen::Isometry3d& b,
+                   const Eigen::Vector3d& reference,
+                   double angle_deg,
+                   double distance);
+
+/// @brief Features whose centre, moved by the pose, lies within `tolerance` [m] of one of their
+/// CAD candidates: the correspondences the pose confirms.
+int countExplainedFeatures(const Eigen::Isometry3d& T_cad_scan,
+                           const SurfaceGraph& scan,
+                           const SurfaceGraph& cad,
+                           const CorrespondenceResult& candidates,
+                           double tolerance);
+
+/// @brief Runs the global stage.
+/// @param scan scan cells (features and candidates index them)
+/// @param cad CAD cells
+/// @param cell_size [m], r_max [m]
+GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
+                                          const SurfaceGraph& cad,
+                                          const CorrespondenceResult& candidates,
+                                          const MeshQuery& cad_mesh,
+                                          double cell_size,
+                                          double r_max,
+                                          const GlobalRegistrationConfig& config);
+
+}  // namespace freeform_inspection

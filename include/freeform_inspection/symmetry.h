@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "freeform_inspection/descriptor.h"
+#include "freeform_inspection/mesh_query.h"
+
+/// @file symmetry.h
+/// Rigid self-symmetries of the CAD model, found once per model by registering the model to
+/// itself with the same global stage the scans go through. A pose T of a scan and S·T (S a
+/// symmetry) explain a full scan equally well; the pipeline scores both so that a symmetric part
+/// is reported as ambiguous instead of with a confident, possibly flipped, pose, and so that the
+/// twin that a partial view does distinguish is found even when the triplets missed it.
+
+namespace freeform_inspection {
+
+/// A motion S of the CAD frame that maps the model (nearly) onto itself.
+struct Symmetry {
+  Eigen::Isometry3d S = Eigen::Isometry3d::Identity();
+  double score = 0.0;  ///< share of the model's cells that S maps onto the model surface
+};
+
+/// @brief Symmetries other than the identity whose self-match score is at least `min_score`,
+/// best first. Deterministic.
+/// @param cad the model's descriptors (cells, values, radii)
+/// @param cell_size [m] surface-graph cell size; `diagonal` [m] the model's L
+std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
+                                     const MeshQuery& query,
+                                     double cell_size,
+                                     double diagonal,
+                                     double min_score = 0.6);
+
+}  // namespace freeform_inspection

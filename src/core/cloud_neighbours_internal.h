@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+// Internal to the core library: the k-nearest-neighbour table of a cloud, computed once and
+// shared by the cloud curvature (PCA normals, orientation, shape-operator fit, area) and the
+// cloud surface edges. Not installed; the public entry points (computeCloudCurvature,
+// cloudEdges) build their own table and give the same results.
+
+#include <cstddef>
+#include <vector>
+
+#include "freeform_inspection/curvature.h"
+#include "freeform_inspection/surface_graph.h"
+#include "freeform_inspection/types.h"
+
+namespace freeform_inspection {
+namespace internal {
+
+/// The k nearest points of every point of a set among the set itself, row-major (point i's at
+/// [i·k, (i+1)·k)), nearest first, exact ties by lower index, the point itself included: row i
+/// equals PointIndex(points).nearest(points[i], k). k is clamped to the number of points.
+struct NeighbourTable {
+  int k = 0;
+  std::vector<int> indices;
+
+  const int* of(std::size_t point) const { return indices.data() + point * std::size_t(k); }
+};
+
+/// @brief The table for all points (which must be finite; an empty set gives k = 0).
+/// Parallel (OpenMP), each row written by one thread: the same for any thread count.
+NeighbourTable nearestNeighbourTable(const Points& points, int k);
+
+/// Squared distance summed as x, y, z, exactly as PointIndex reports it.
+inline double squaredDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double diff = a[i] - b[i];
+    sum += diff * diff;
+  }
+  return sum;
+}
+
+/// @brief computeCloudCurvature() with the neighbourhoods taken from a table computed by the
+/// caller, or computed here (k = `table_k`, at least config.neighbours) and handed back in
+/// `table`, so the caller can reuse it. On invalid input the table is left empty.
+CurvatureResult computeCloudCurvature(const Points& points,
+                                      const Points& normals,
+                                      const CloudCurvatureConfig& config,
+                                      int table_k,
+                                      NeighbourTable* table);
+
+/// @brief cloudEdges() from a table of the same points (the first `neighbours` + 1 columns are
+/// used; the table must have at least that many or all the points). Each edge once as
+/// (lower, higher), in no particular order.
+std::vector<SurfaceEdge> cloudEdges(const Points& points,
+                                    const Points& normals,
+                                    const NeighbourTable& table,
+                                    int neighbours,
+                                    double max_length);
+
+}  // namespace internal
+}  // namespace freeform_inspection

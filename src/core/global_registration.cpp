@@ -1,0 +1,361 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "freeform_inspection/global_registration.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+namespace freeform_inspection {
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+struct Oriented {
+  Eigen::Vector3d point;
+  Eigen::Vector3d normal;  // unit, or zero when unknown
+};
+
+Oriented cellOf(const SurfaceGraph& graph, int cell) {
+  const auto c = static_cast<std::size_t>(cell);
+  return {graph.centroids[c], graph.normals[c]};
+}
+
+// Angle between the lines of two unit vectors, in [0, π/2]. Cloud normals are oriented by
+// propagation, which can leave a region flipped; comparing lines keeps the checks valid there.
+double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::min(1.0, std::abs(a.dot(b))));
+}
+
+bool hasNormal(const Eigen::Vector3d& n) {
+  return n.squaredNorm() > 0.5;
+}
+
+// The triangle check of §3.5 for one side of a triangle, plus the three angles a pair of
+// oriented points keeps under any rigid motion (normal–normal and each normal with the side).
+struct PairCheck {
+  double distance_tolerance;
+  double angle_tolerance;
+
+  bool operator()(const Oriented& s1,
+                  const Oriented& s2,
+                  const Oriented& c1,
+                  const Oriented& c2) const {
+    const Eigen::Vector3d ds = s2.point - s1.point;
+    const Eigen::Vector3d dc = c2.point - c1.point;
+    const double ls = ds.norm();
+    const double lc = dc.norm();
+    if (std::abs(ls - lc) > distance_tolerance) {
+      return false;
+    }
+    if (!hasNormal(s1.normal) || !hasNormal(s2.normal) || !hasNormal(c1.normal) ||
+        !hasNormal(c2.normal) || ls <= 0.0 || lc <= 0.0) {
+      return true;
+    }
+    const Eigen::Vector3d us = ds / ls;
+    const Eigen::Vector3d uc = dc / lc;
+    return std::abs(angleBetween(s1.normal, s2.normal) - angleBetween(c1.normal, c2.normal)) <=
+               angle_tolerance &&
+           std::abs(angleBetween(s1.normal, us) - angleBetween(c1.normal, uc)) <= angle_tolerance &&
+           std::abs(angleBetween(s2.normal, us) - angleBetween(c2.normal, uc)) <= angle_tolerance;
+  }
+};
+
+// Consistent candidate pairs of every feature pair: consistent[i][j][a * |C_j| + b].
+using PairTable = std::vector<std::vector<std::vector<char>>>;
+
+struct Fit {
+  PoseHypothesis pose;
+  double rarity_rank;  // sum of the triplet's feature indices: lower = rarer features
+};
+
+Eigen::Isometry3d rigidFit(const Eigen::Matrix3d& scan, const Eigen::Matrix3d& cad) {
+  Eigen::Isometry3d T;
+  T.matrix() = Eigen::umeyama(scan, cad, false);
+  return T;
+}
+
+// eq. 14, robust reading: each feature counts the squared distance to the nearest of its
+// candidates after the motion, truncated at the pair tolerance (a feature without a true match
+// must not dominate), averaged over the features.
+void scoreByFeatures(const SurfaceGraph& scan,
+                     const SurfaceGraph& cad,
+                     const CorrespondenceResult& candidates,
+                     double tolerance,
+                     PoseHypothesis* pose) {
+  const double tolerance2 = tolerance * tolerance;
+  double sum = 0.0;
+  int explained = 0;
+  for (const auto& feature : candidates.features) {
+    const Eigen::Vector3d p =
+        pose->T_cad_scan * scan.centroids[static_cast<std::size_t>(feature.feature)];
+    double best = tolerance2;
+    for (const int c : feature.cad) {
+      best = std::min(best, (cad.centroids[static_cast<std::size_t>(c)] - p).squaredNorm());
+    }
+    explained += best < tolerance2 ? 1 : 0;
+    sum += best;
+  }
+  pose->features_explained = explained;
+  pose->error = sum / static_cast<double>(std::max<std::size_t>(1, candidates.features.size()));
+}
+
+bool betterFit(const Fit& a, const Fit& b) {
+  if (a.pose.features_explained != b.pose.features_explained) {
+    return a.pose.features_explained > b.pose.features_explained;
+  }
+  if (a.pose.error != b.pose.error) {
+    return a.pose.error < b.pose.error;
+  }
+  return a.rarity_rank < b.rarity_rank;
+}
+
+}  // namespace
+
+std::vector<std::string> validate(const GlobalRegistrationConfig& config) {
+  std::vector<std::string> errors;
+  if (!(config.pair_tolerance_cells > 0.0 && std::isfinite(config.pair_tolerance_cells))) {
+    errors.push_back("registration.pair_tolerance_cells must be a finite value > 0");
+  }
+  if (!(config.normal_tolerance_deg > 0.0 && config.normal_tolerance_deg <= 180.0)) {
+    errors.push_back("registration.normal_tolerance_deg must be in (0, 180]");
+  }
+  if (!(config.min_side_ratio >= 0.0 && std::isfinite(config.min_side_ratio))) {
+    errors.push_back("registration.min_side_ratio must be a finite value >= 0");
+  }
+  if (config.max_fits < 1) {
+    errors.push_back("registration.max_fits must be at least 1");
+  }
+  if (config.verified_hypotheses < 1) {
+    errors.push_back("registration.verified_hypotheses must be at least 1");
+  }
+  if (config.verification_points < 3) {
+    errors.push_back("registration.verification_points must be at least 3");
+  }
+  if (config.refined_hypotheses < 1) {
+    errors.push_back("registration.refined_hypotheses must be at least 1");
+  }
+  if (!(config.ambiguity_ratio > 0.0 && config.ambiguity_ratio <= 1.0)) {
+    errors.push_back("registration.ambiguity_ratio must be in (0, 1]");
+  }
+  if (!(config.min_score >= 0.0 && config.min_score < 1.0)) {
+    errors.push_back("registration.min_score must be in [0, 1)");
+  }
+  if (!(config.min_fitness >= 0.0 && config.min_fitness < 1.0)) {
+    errors.push_back("registration.min_fitness must be in [0, 1)");
+  }
+  if (!(config.verification_distance_cells > 0.0 &&
+        std::isfinite(config.verification_distance_cells))) {
+    errors.push_back("registration.verification_distance_cells must be a finite value > 0");
+  }
+  return errors;
+}
+
+int countExplainedFeatures(const Eigen::Isometry3d& T_cad_scan,
+                           const SurfaceGraph& scan,
+                           const SurfaceGraph& cad,
+                           const CorrespondenceResult& candidates,
+                           double tolerance) {
+  PoseHypothesis pose;
+  pose.T_cad_scan = T_cad_scan;
+  scoreByFeatures(scan, cad, candidates, tolerance, &pose);
+  return pose.features_explained;
+}
+
+VerificationSet makeVerificationSet(const SurfaceGraph& scan, std::size_t count) {
+  VerificationSet set;
+  const std::size_t n = scan.size();
+  const std::size_t taken = std::min(n, count);
+  for (std::size_t i = 0; i < taken; ++i) {
+    const std::size_t cell = i * n / taken;  // evenly spread, deterministic
+    set.points.push_back(scan.centroids[cell]);
+    set.normals.push_back(scan.normals[cell]);
+  }
+  return set;
+}
+
+double verificationScore(const Eigen::Isometry3d& T_cad_scan,
+                         const VerificationSet& set,
+                         const MeshQuery& cad,
+                         double truncation,
+                         double normal_tolerance_deg) {
+  if (set.points.empty()) {
+    return 0.0;
+  }
+  // Serial: callers score many poses in parallel instead (one parallel region per batch of
+  // poses, not per pose, so a busy core does not stall every call).
+  const double min_cos = std::cos(normal_tolerance_deg * kDegree);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < set.points.size(); ++i) {
+    const ClosestPoint closest = cad.closest(T_cad_scan * set.points[i], truncation);
+    if (!closest.found) {
+      continue;
+    }
+    const Eigen::Vector3d normal = T_cad_scan.linear() * set.normals[i];
+    if (hasNormal(normal) && std::abs(normal.dot(closest.normal)) < min_cos) {
+      continue;
+    }
+    sum += 1.0 - std::pow(closest.distance / truncation, 2);
+  }
+  return sum / static_cast<double>(set.points.size());
+}
+
+bool distinctPoses(const Eigen::Isometry3d& a,
+                   const Eigen::Isometry3d& b,
+                   const Eigen::Vector3d& reference,
+                   double angle_deg,
+                   double distance) {
+  const Eigen::AngleAxisd relative(a.linear().transpose() * b.linear());
+  return std::abs(relative.angle()) > angle_deg * kDegree ||
+         (a * reference - b * reference).norm() > distance;
+}
+
+GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
+                                          const SurfaceGraph& cad,
+                                          const CorrespondenceResult& candidates,
+                                          const MeshQuery& cad_mesh,
+                                          double cell_size,
+                                          double r_max,
+                                          const GlobalRegistrationConfig& config) {
+  GlobalRegistrationResult result;
+  const auto& features = candidates.features;
+  const std::size_t f_count = features.size();
+  const double tolerance = config.pair_tolerance_cells * cell_size;
+  const PairCheck check{tolerance, config.normal_tolerance_deg * kDegree};
+  const double min_side = config.min_side_ratio * r_max;
+
+  // Pairwise table (the triangle check, one side at a time).
+  PairTable consistent(f_count, std::vector<std::vector<char>>(f_count));
+  for (std::size_t i = 0; i < f_count; ++i) {
+    const Oriented fi = cellOf(scan, features[i].feature);
+    for (std::size_t j = i + 1; j < f_count; ++j) {
+      const Oriented fj = cellOf(scan, features[j].feature);
+      if ((fj.point - fi.point).norm() < min_side) {
+        continue;  // too short a side for a stable fit
+      }
+      auto& table = consistent[i][j];
+      table.assign(features[i].cad.size() * features[j].cad.size(), 0);
+      for (std::size_t a = 0; a < features[i].cad.size(); ++a) {
+        const Oriented ca = cellOf(cad, features[i].cad[a]);
+        for (std::size_t b = 0; b < features[j].cad.size(); ++b) {
+          table[a * features[j].cad.size() + b] =
+              check(fi, fj, ca, cellOf(cad, features[j].cad[b])) ? 1 : 0;
+        }
+      }
+    }
+  }
+
+  const double min_cos = std::cos(config.normal_tolerance_deg * kDegree);
+  std::vector<Fit> fits;
+  std::size_t evaluated = 0;
+  for (std::size_t i = 0; i < f_count && evaluated < config.max_fits; ++i) {
+    for (std::size_t j = i + 1; j < f_count && evaluated < config.max_fits; ++j) {
+      if (consistent[i][j].empty()) {
+        continue;
+      }
+      for (std::size_t k = j + 1; k < f_count && evaluated < config.max_fits; ++k) {
+        if (consistent[i][k].empty() || consistent[j][k].empty()) {
+          continue;
+        }
+        const Oriented s[3] = {cellOf(scan, features[i].feature),
+                               cellOf(scan, features[j].feature),
+                               cellOf(scan, features[k].feature)};
+        const double doubled_area = (s[1].point - s[0].point).cross(s[2].point - s[0].point).norm();
+        const double longest = std::max({(s[1].point - s[0].point).norm(),
+                                         (s[2].point - s[0].point).norm(),
+                                         (s[2].point - s[1].point).norm()});
+        if (doubled_area / longest < 0.5 * min_side) {
+          continue;  // nearly collinear: the rotation about the line is undetermined
+        }
+        Eigen::Matrix3d scan_points;
+        scan_points << s[0].point, s[1].point, s[2].point;
+        const std::size_t nj = features[j].cad.size();
+        const std::size_t nk = features[k].cad.size();
+        for (std::size_t a = 0; a < features[i].cad.size(); ++a) {
+          for (std::size_t b = 0; b < nj; ++b) {
+            if (consistent[i][j][a * nj + b] == 0) {
+              continue;
+            }
+            for (std::size_t c = 0; c < nk && evaluated < config.max_fits; ++c) {
+              if (consistent[i][k][a * nk + c] == 0 || consistent[j][k][b * nk + c] == 0) {
+                continue;
+              }
+              ++result.consistent_triplets;
+              const int cad_cells[3] = {features[i].cad[a], features[j].cad[b], features[k].cad[c]};
+              Eigen::Matrix3d cad_points;
+              for (int m = 0; m < 3; ++m) {
+                cad_points.col(m) = cad.centroids[static_cast<std::size_t>(cad_cells[m])];
+              }
+              ++evaluated;
+              Fit fit;
+              fit.pose.T_cad_scan = rigidFit(scan_points, cad_points);
+              bool normals_agree = true;
+              for (int m = 0; m < 3 && normals_agree; ++m) {
+                const Eigen::Vector3d n = fit.pose.T_cad_scan.linear() * s[m].normal;
+                const Eigen::Vector3d& nc = cad.normals[static_cast<std::size_t>(cad_cells[m])];
+                normals_agree = !hasNormal(n) || !hasNormal(nc) || std::abs(n.dot(nc)) >= min_cos;
+              }
+              if (!normals_agree) {
+                continue;
+              }
+              const int feature_indices[3] = {
+                  static_cast<int>(i), static_cast<int>(j), static_cast<int>(k)};
+              for (int m = 0; m < 3; ++m) {
+                fit.pose.feature_triplet[m] = feature_indices[m];
+                fit.pose.cad_triplet[m] = cad_cells[m];
+              }
+              fit.rarity_rank = static_cast<double>(i + j + k);
+              scoreByFeatures(scan, cad, candidates, tolerance, &fit.pose);
+              fits.push_back(fit);
+            }
+          }
+        }
+      }
+    }
+  }
+  if (fits.empty()) {
+    result.status =
+        Status::failure(StatusCode::kRegistrationFailed,
+                        "no consistent feature triplet: none of the " + std::to_string(f_count) +
+                            " scan features form a triangle congruent with their CAD candidates");
+    return result;
+  }
+  std::sort(fits.begin(), fits.end(), betterFit);
+
+  // The best distinct fits are verified against the whole scan.
+  const VerificationSet set = makeVerificationSet(scan, config.verification_points);
+  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
+  for (const auto& p : set.points) {
+    reference += p / static_cast<double>(set.points.size());
+  }
+  const double truncation = config.verification_distance_cells * cell_size;
+  for (const Fit& fit : fits) {
+    const bool distinct = std::all_of(
+        result.hypotheses.begin(), result.hypotheses.end(), [&](const PoseHypothesis& kept) {
+          return distinctPoses(kept.T_cad_scan, fit.pose.T_cad_scan, reference, 5.0, tolerance);
+        });
+    if (!distinct) {
+      continue;
+    }
+    result.hypotheses.push_back(fit.pose);
+    if (static_cast<int>(result.hypotheses.size()) >= config.verified_hypotheses) {
+      break;
+    }
+  }
+  const auto count = static_cast<long>(result.hypotheses.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long h = 0; h < count; ++h) {
+    auto& hypothesis = result.hypotheses[static_cast<std::size_t>(h)];
+    hypothesis.score = verificationScore(
+        hypothesis.T_cad_scan, set, cad_mesh, truncation, config.normal_tolerance_deg);
+  }
+  std::stable_sort(
+      result.hypotheses.begin(),
+      result.hypotheses.end(),
+      [](const PoseHypothesis& a, const PoseHypothesis& b) { return a.score > b.score; });
+  result.correspondences = static_cast<std::size_t>(result.hypotheses.front().features_explained);
+  return result;
+}
+
+}  // namespace freeform_inspection

@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "freeform_inspection/icp.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
+namespace freeform_inspection {
+namespace {
+
+Points evenSubset(const Points& points, std::size_t count) {
+  if (points.size() <= count) {
+    return points;
+  }
+  Points subset;
+  subset.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    subset.push_back(points[i * points.size() / count]);
+  }
+  return subset;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) {
+    return 0.0;
+  }
+  const auto middle = values.begin() + static_cast<long>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+struct Pairs {
+  std::vector<Eigen::Vector3d> source;  // moved scan points
+  std::vector<Eigen::Vector3d> target;  // closest CAD points
+  std::vector<Eigen::Vector3d> normal;  // CAD face normals
+  std::vector<double> residual;         // signed (plane) or unsigned (point) distance
+};
+
+Pairs match(const MeshQuery& cad,
+            const Points& points,
+            const Eigen::Isometry3d& T,
+            double cutoff,
+            bool point_to_plane) {
+  Points moved(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    moved[i] = T * points[i];
+  }
+  const std::vector<ClosestPoint> closest = cad.closest(moved, cutoff);
+  Pairs pairs;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    if (!closest[i].found) {
+      continue;
+    }
+    pairs.source.push_back(moved[i]);
+    pairs.target.push_back(closest[i].point);
+    pairs.normal.push_back(closest[i].normal);
+    pairs.residual.push_back(point_to_plane ? closest[i].normal.dot(moved[i] - closest[i].point)
+                                            : closest[i].distance);
+  }
+  return pairs;
+}
+
+// Linearised point-to-plane step: minimise Σ (n·(p + ω×p + t − q))² over (ω, t).
+Eigen::Isometry3d pointToPlaneStep(const Pairs& pairs) {
+  Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+  for (std::size_t i = 0; i < pairs.source.size(); ++i) {
+    Eigen::Matrix<double, 6, 1> J;
+    J << pairs.source[i].cross(pairs.normal[i]), pairs.normal[i];
+    A += J * J.transpose();
+    b -= J * pairs.residual[i];
+  }
+  const Eigen::Matrix<double, 6, 1> x = A.ldlt().solve(b);
+  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+  const Eigen::Vector3d omega = x.head<3>();
+  if (omega.norm() > 0.0 && omega.allFinite()) {
+    step.linear() = Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix();
+  }
+  step.translation() =
+      x.tail<3>().allFinite() ? Eigen::Vector3d(x.tail<3>()) : Eigen::Vector3d::Zero();
+  return step;
+}
+
+Eigen::Isometry3d pointToPointStep(const Pairs& pairs) {
+  Eigen::Matrix3Xd source(3, static_cast<Eigen::Index>(pairs.source.size()));
+  Eigen::Matrix3Xd target(3, static_cast<Eigen::Index>(pairs.source.size()));
+  for (std::size_t i = 0; i < pairs.source.size(); ++i) {
+    source.col(static_cast<Eigen::Index>(i)) = pairs.source[i];
+    target.col(static_cast<Eigen::Index>(i)) = pairs.target[i];
+  }
+  Eigen::Isometry3d step;
+  step.matrix() = Eigen::umeyama(source, target, false);
+  return step;
+}
+
+}  // namespace
+
+std::vector<std::string> validate(const IcpConfig& config) {
+  std::vector<std::string> errors;
+  if (config.max_iterations < 1) {
+    errors.push_back("icp.max_iterations must be at least 1");
+  }
+  if (!(config.convergence > 0.0 && config.convergence < 1.0)) {
+    errors.push_back("icp.convergence must be in (0, 1)");
+  }
+  if (!(config.sigma_multiple > 0.0 && std::isfinite(config.sigma_multiple))) {
+    errors.push_back("icp.sigma_multiple must be a finite value > 0");
+  }
+  if (!(config.min_cutoff_ratio > 0.0 && config.min_cutoff_ratio <= config.max_cutoff_ratio &&
+        std::isfinite(config.max_cutoff_ratio))) {
+    errors.push_back("icp.min_cutoff_ratio and icp.max_cutoff_ratio must satisfy 0 < min <= max");
+  }
+  if (config.max_points < 6) {
+    errors.push_back("icp.max_points must be at least 6");
+  }
+  return errors;
+}
+
+IcpResult refinePose(const MeshQuery& cad,
+                     const Points& scan_points,
+                     const Eigen::Isometry3d& initial,
+                     double initial_cutoff,
+                     double cad_diagonal,
+                     const IcpConfig& config) {
+  IcpResult result;
+  result.T_cad_scan = initial;
+  const Points points = evenSubset(scan_points, config.max_points);
+  const double floor = config.min_cutoff_ratio * cad_diagonal;
+  const double ceiling = config.max_cutoff_ratio * cad_diagonal;
+  double cutoff = std::clamp(initial_cutoff, floor, ceiling);
+  double previous_mse = -1.0;
+  for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
+    const Pairs pairs = match(cad, points, result.T_cad_scan, cutoff, config.point_to_plane);
+    if (pairs.source.size() < 6) {
+      result.status =
+          Status::failure(StatusCode::kRegistrationFailed,
+                          "ICP lost the surface: " + std::to_string(pairs.source.size()) +
+                              " scan points within " + std::to_string(cutoff) + " m of the CAD");
+      return result;
+    }
+    double mse = 0.0;
+    for (const double r : pairs.residual) {
+      mse += r * r / static_cast<double>(pairs.residual.size());
+    }
+    const Eigen::Isometry3d step =
+        config.point_to_plane ? pointToPlaneStep(pairs) : pointToPointStep(pairs);
+    result.T_cad_scan = step * result.T_cad_scan;
+    result.iterations = iteration + 1;
+    // The cut-off follows the residual: 3 robust σ of the pairs, never growing.
+    std::vector<double> magnitude(pairs.residual.size());
+    std::transform(pairs.residual.begin(), pairs.residual.end(), magnitude.begin(), [](double r) {
+      return std::abs(r);
+    });
+    result.sigma = 1.4826 * median(magnitude);
+    cutoff = std::clamp(std::min(cutoff, config.sigma_multiple * result.sigma), floor, ceiling);
+    // eq. 15 (relative change of the mean squared error), or a step too small to matter: on
+    // noise-free data the error keeps halving long after the pose has stopped moving.
+    const bool settled =
+        previous_mse >= 0.0 && std::abs(previous_mse - mse) < config.convergence * previous_mse;
+    const bool still = Eigen::AngleAxisd(step.linear()).angle() < 1e-7 &&
+                       step.translation().norm() < 1e-8 * cad_diagonal;
+    if (settled || still) {
+      result.converged = true;
+      break;
+    }
+    previous_mse = mse;
+  }
+  // Final fit on the same points: inliers within 3σ (bounded), their RMS.
+  const Pairs pairs = match(cad, points, result.T_cad_scan, ceiling, config.point_to_plane);
+  std::vector<double> magnitude(pairs.residual.size());
+  std::transform(pairs.residual.begin(), pairs.residual.end(), magnitude.begin(), [](double r) {
+    return std::abs(r);
+  });
+  result.sigma = 1.4826 * median(magnitude);
+  result.inlier_distance = std::clamp(config.sigma_multiple * result.sigma, floor, ceiling);
+  double sum = 0.0;
+  std::size_t inliers = 0;
+  for (const double m : magnitude) {
+    if (m <= result.inlier_distance) {
+      sum += m * m;
+      ++inliers;
+    }
+  }
+  result.rmse = inliers > 0 ? std::sqrt(sum / static_cast<double>(inliers)) : 0.0;
+  result.fitness = static_cast<double>(inliers) / static_cast<double>(points.size());
+  if (!result.converged) {
+    result.status = Status::failure(
+        StatusCode::kNotConverged,
+        "ICP did not converge in " + std::to_string(config.max_iterations) + " iterations");
+  }
+  return result;
+}
+
+}  // namespace freeform_inspection

@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "freeform_inspection/symmetry.h"
+
+#include <algorithm>
+
+#include <Eigen/Eigenvalues>
+
+#include "freeform_inspection/correspondence.h"
+#include "freeform_inspection/features.h"
+#include "freeform_inspection/global_registration.h"
+#include "freeform_inspection/icp.h"
+
+namespace freeform_inspection {
+namespace {
+
+// Rotations about the principal axes of the model's surface (through its centroid) by multiples
+// of 30°: the motions near-symmetric parts (flanges, tubes, blades) are confused by. Each is
+// only a starting point; ICP takes it to the nearest true self-match, if any.
+std::vector<Eigen::Isometry3d> principalAxisRotations(const SurfaceGraph& graph) {
+  double area = 0.0;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (std::size_t c = 0; c < graph.size(); ++c) {
+    centroid += graph.area[c] * graph.centroids[c];
+    area += graph.area[c];
+  }
+  std::vector<Eigen::Isometry3d> motions;
+  if (!(area > 0.0)) {
+    return motions;
+  }
+  centroid /= area;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (std::size_t c = 0; c < graph.size(); ++c) {
+    const Eigen::Vector3d d = graph.centroids[c] - centroid;
+    covariance += graph.area[c] * d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int step = 1; step < 12; ++step) {
+      const Eigen::AngleAxisd rotation(step * 3.14159265358979323846 / 6.0,
+                                       solver.eigenvectors().col(axis));
+      Eigen::Isometry3d S = Eigen::Isometry3d::Identity();
+      S.linear() = rotation.toRotationMatrix();
+      S.translation() = centroid - S.linear() * centroid;
+      motions.push_back(S);
+    }
+  }
+  return motions;
+}
+
+}  // namespace
+
+std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
+                                     const MeshQuery& query,
+                                     double cell_size,
+                                     double diagonal,
+                                     double min_score) {
+  std::vector<Symmetry> symmetries;
+  if (!cad.status.ok() || cad.graph.size() < 3 || !query.status().ok()) {
+    return symmetries;
+  }
+  const double r_max = cad.radii.back();
+  const FeatureResult features =
+      selectFeatures(cad.graph.centroids, cad.cell_values, r_max, FeatureConfig());
+  const CorrespondenceConfig correspondence;
+  const CorrespondenceResult candidates = findCandidates(cad.cell_values,
+                                                         features.cells,
+                                                         cad.cell_values,
+                                                         cad.graph.centroids,
+                                                         cell_size,
+                                                         correspondence);
+  GlobalRegistrationConfig config;
+  config.verified_hypotheses *= 2;  // the identity and its near copies take many of the slots
+  // A failed self-registration still leaves the principal-axis starts below.
+  const GlobalRegistrationResult global =
+      registerGlobally(cad.graph, cad.graph, candidates, query, cell_size, r_max, config);
+  const VerificationSet set = makeVerificationSet(cad.graph, config.verification_points);
+  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
+  for (const auto& p : set.points) {
+    reference += p / static_cast<double>(set.points.size());
+  }
+  const double truncation = config.verification_distance_cells * cell_size;
+  IcpConfig config_icp;
+  config_icp.max_iterations = 15;
+  const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Isometry3d> starts = principalAxisRotations(cad.graph);
+  for (const PoseHypothesis& hypothesis : global.hypotheses) {
+    if (hypothesis.score >= 0.5 * min_score) {
+      starts.push_back(hypothesis.T_cad_scan);
+    }
+  }
+  // Refine every start (in parallel: one region for all of them), then keep the new ones.
+  std::vector<Symmetry> refined(starts.size());
+  const auto count = static_cast<long>(starts.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long i = 0; i < count; ++i) {
+    const Eigen::Isometry3d& start = starts[static_cast<std::size_t>(i)];
+    if (!distinctPoses(identity, start, reference, 10.0, 3.0 * cell_size)) {
+      continue;
+    }
+    const IcpResult icp = refinePose(query, set.points, start, truncation, diagonal, config_icp);
+    const Eigen::Isometry3d S =
+        icp.status.ok() || icp.status.code == StatusCode::kNotConverged ? icp.T_cad_scan : start;
+    refined[static_cast<std::size_t>(i)] = {
+        S, verificationScore(S, set, query, truncation, config.normal_tolerance_deg)};
+  }
+  for (const Symmetry& candidate : refined) {
+    const bool is_new = distinctPoses(identity, candidate.S, reference, 10.0, 3.0 * cell_size) &&
+                        std::all_of(symmetries.begin(), symmetries.end(), [&](const Symmetry& s) {
+                          return distinctPoses(s.S, candidate.S, reference, 10.0, 3.0 * cell_size);
+                        });
+    if (candidate.score >= min_score && is_new) {
+      symmetries.push_back(candidate);
+    }
+  }
+  std::stable_sort(symmetries.begin(), symmetries.end(), [](const Symmetry& a, const Symmetry& b) {
+    return a.score > b.score;
+  });
+  return symmetries;
+}
+
+}  // namespace freeform_inspection
