@@ -135,10 +135,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "registration_eval: %s\n", generated.status.message.c_str());
       return 2;
     }
-    fi::Scan scan = options.mesh_copy
-                        ? noisyMeshCopy(model.mesh(), generated, config.noise_ratio * diagonal,
-                                        config.seed)
-                        : generated.scan;
+    fi::Scan scan =
+        options.mesh_copy
+            ? noisyMeshCopy(model.mesh(), generated, config.noise_ratio * diagonal, config.seed)
+            : generated.scan;
     if (std::getenv("FI_NO_NORMALS") != nullptr) {
       scan.normals.clear();
     }

@@ -36,6 +36,11 @@ struct GlobalRegistrationConfig {
   double ambiguity_ratio = 0.93;
   double min_score = 0.4;    ///< a final verification score below this is a failed registration
   double min_fitness = 0.6;  ///< a final ICP fitness below this is a failed registration
+  /// A pose whose residual σ exceeds this × the scan's own noise (at least 0.1 % of L) while it
+  /// leaves more than 1 − `residual_fitness` of the scan outside the inliers is not trusted: a
+  /// slid or turned pose on a smooth part fits part of the scan and stretches the residual.
+  double max_residual_ratio = 1.5;
+  double residual_fitness = 0.95;
 };
 
 /// @brief One message per invalid field; empty when valid.

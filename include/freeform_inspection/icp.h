@@ -47,6 +47,12 @@ struct IcpResult {
   double fitness = 0.0;          ///< share of the used points within inlier_distance
 };
 
+/// @brief The scan's own noise along the surface normal [m], without any CAD: the median over
+/// up to `samples` evenly spread points of the RMS distance of their 16 nearest neighbours to
+/// the neighbours' least-squares plane (corrected for the 3 fitted degrees of freedom). On a
+/// curved surface the estimate includes the curvature inside the neighbourhood, so it errs high.
+double estimateScanNoise(const Points& points, std::size_t samples = 1000);
+
 /// @brief Refines `initial` by ICP.
 /// @param initial_cutoff [m] cut-off of the first iteration (the global stage's accuracy)
 IcpResult refinePose(const MeshQuery& cad,

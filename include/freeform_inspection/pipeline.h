@@ -109,6 +109,7 @@ struct InspectionResult {
   double inlier_distance = std::numeric_limits<double>::quiet_NaN();  ///< [m] 3σ, bounded
   double noise_sigma = std::numeric_limits<double>::quiet_NaN();  ///< [m] robust σ of residuals
   double score = 0.0;  ///< verification score of the pose: share of the scan it explains
+  double scan_noise = std::numeric_limits<double>::quiet_NaN();  ///< [m] the scan's own noise
   DeviationStatistics deviation;
   std::vector<DefectRegion> defects;
   InspectionCounts counts;

@@ -38,6 +38,8 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"registration/ambiguity_ratio", &config.registration.ambiguity_ratio},
       {"registration/min_score", &config.registration.min_score},
       {"registration/min_fitness", &config.registration.min_fitness},
+      {"registration/max_residual_ratio", &config.registration.max_residual_ratio},
+      {"registration/residual_fitness", &config.registration.residual_fitness},
       {"icp/point_to_plane", &config.icp.point_to_plane},
       {"icp/max_iterations", &config.icp.max_iterations},
       {"icp/convergence", &config.icp.convergence},

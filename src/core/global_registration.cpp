@@ -145,6 +145,12 @@ std::vector<std::string> validate(const GlobalRegistrationConfig& config) {
   if (!(config.min_fitness >= 0.0 && config.min_fitness < 1.0)) {
     errors.push_back("registration.min_fitness must be in [0, 1)");
   }
+  if (!(config.max_residual_ratio >= 1.0 && std::isfinite(config.max_residual_ratio))) {
+    errors.push_back("registration.max_residual_ratio must be a finite ratio >= 1");
+  }
+  if (!(config.residual_fitness >= 0.0 && config.residual_fitness <= 1.0)) {
+    errors.push_back("registration.residual_fitness must be in [0, 1]");
+  }
   if (!(config.verification_distance_cells > 0.0 &&
         std::isfinite(config.verification_distance_cells))) {
     errors.push_back("registration.verification_distance_cells must be a finite value > 0");

@@ -250,14 +250,25 @@ void registerScan(const Model& model,
                              candidates,
                              config.registration.pair_tolerance_cells * cell));
 
+  result->scan_noise = estimateScanNoise(scan_points);
+  const double noise_floor = std::max(result->scan_noise, 1e-3 * diagonal);
+  const bool stretched = icp.sigma > config.registration.max_residual_ratio * noise_floor &&
+                         icp.fitness < config.registration.residual_fitness;
   if (result->score < config.registration.min_score ||
-      result->fitness < config.registration.min_fitness) {
+      result->fitness < config.registration.min_fitness || stretched) {
     result->status = Status::failure(
         StatusCode::kRegistrationFailed,
         "no pose explains the scan: best pose explains " + std::to_string(result->score) +
             " of it (registration.min_score " + std::to_string(config.registration.min_score) +
             "), ICP fitness " + std::to_string(result->fitness) + " (registration.min_fitness " +
-            std::to_string(config.registration.min_fitness) + ")");
+            std::to_string(config.registration.min_fitness) + "), residual " +
+            formatLength(icp.sigma) + " for a scan noise of " + formatLength(result->scan_noise) +
+            " (registration.max_residual_ratio " +
+            std::to_string(config.registration.max_residual_ratio) + ")");
+    // No pose to use: the contract's identity, with the rejected fit's numbers kept for the
+    // message and diagnostics.
+    result->T_cad_scan = Eigen::Isometry3d::Identity();
+    result->rmse = std::numeric_limits<double>::quiet_NaN();
     return;
   }
   // Another distinct pose that explains the scan about as well: say so, with all of them.

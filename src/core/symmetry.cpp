@@ -3,6 +3,7 @@
 #include "freeform_inspection/symmetry.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/Eigenvalues>
 
@@ -35,8 +36,14 @@ std::vector<Eigen::Isometry3d> principalAxisRotations(const SurfaceGraph& graph)
     covariance += graph.area[c] * d * d.transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  const Eigen::Vector3d spread = solver.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   for (int axis = 0; axis < 3; ++axis) {
-    for (int step = 1; step < 12; ++step) {
+    // Turns by 30° only about an axis the part is nearly round about (the other two spreads
+    // within 25 %); about any other axis only the half turn can map the part onto itself.
+    const double a = spread[(axis + 1) % 3];
+    const double b = spread[(axis + 2) % 3];
+    const bool round = std::abs(a - b) <= 0.25 * std::max(a, b);
+    for (int step = round ? 1 : 6; step < (round ? 12 : 7); ++step) {
       const Eigen::AngleAxisd rotation(step * 3.14159265358979323846 / 6.0,
                                        solver.eigenvectors().col(axis));
       Eigen::Isometry3d S = Eigen::Isometry3d::Identity();
@@ -70,7 +77,9 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
                                                          cell_size,
                                                          correspondence);
   GlobalRegistrationConfig config;
-  config.verified_hypotheses *= 2;  // the identity and its near copies take many of the slots
+  config.verified_hypotheses = 64;  // self-matches are few; the scan's default is generous
+  config.max_fits = 20000;
+  config.verification_points = 600;
   // A failed self-registration still leaves the principal-axis starts below.
   const GlobalRegistrationResult global =
       registerGlobally(cad.graph, cad.graph, candidates, query, cell_size, r_max, config);

@@ -2,7 +2,10 @@
 // Copyright 2026 The freeform_inspection authors
 #include "freeform_inspection/pipeline.h"
 
+#include <limits>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "analytic_clouds.h"
 #include "analytic_shapes.h"
@@ -100,6 +103,64 @@ TEST(StatusNames, AreStableForJsonAndMessages) {
   EXPECT_STREQ(toString(StatusCode::kUnitsMismatch), "units_mismatch");
   EXPECT_STREQ(toString(RegistrationStatus::kAmbiguous), "ambiguous");
   EXPECT_STREQ(toString(Verdict::kNotEvaluated), "NOT_EVALUATED");
+}
+
+}  // namespace
+}  // namespace freeform_inspection
+
+namespace freeform_inspection {
+namespace {
+
+// Issue 4's bad inputs, through the whole pipeline: each gets a status naming the problem and
+// the registration is "failed" — never a pose reported as ok.
+TEST(Inspect, BadScansGetAReasonAndNoPose) {
+  const Model box = boxModel();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  struct Case {
+    std::string name;
+    Points points;
+    StatusCode code;
+    std::string words;
+  };
+  Points collinear;
+  Points planar;
+  Points huge;
+  for (int i = 0; i < 200; ++i) {
+    collinear.emplace_back(0.0005 * i, 0.0, 0.0);
+    planar.emplace_back(0.001 * (i % 20), 0.001 * (i / 20), 0.0);
+  }
+  for (const auto& p : test::sampleBoxSurface(kHalf, 400, 3)) {
+    huge.push_back(1000.0 * p);  // the scan in mm, the CAD in m
+  }
+  const std::vector<Case> cases = {
+      {"empty", {}, StatusCode::kInvalidInput, "no finite points"},
+      {"all NaN", {{nan, nan, nan}, {nan, 0, 0}}, StatusCode::kInvalidInput, "no finite points"},
+      {"two points", {{0, 0, 0}, {0.01, 0, 0}}, StatusCode::kDegenerateInput, "points"},
+      {"collinear", collinear, StatusCode::kDegenerateInput, "collinear"},
+      {"planar", planar, StatusCode::kDegenerateInput, "planar"},
+      {"1000 times larger", huge, StatusCode::kUnitsMismatch, "units"},
+  };
+  for (const Case& c : cases) {
+    Scan scan;
+    scan.points = c.points;
+    const InspectionResult result = inspect(box, scan, PipelineConfig());
+    EXPECT_EQ(result.status.code, c.code) << c.name << ": " << result.status.message;
+    EXPECT_NE(result.status.message.find(c.words), std::string::npos)
+        << c.name << ": " << result.status.message;
+    EXPECT_EQ(result.registration, RegistrationStatus::kFailed) << c.name;
+    EXPECT_EQ(result.verdict, Verdict::kNotEvaluated) << c.name;
+  }
+}
+
+TEST(Inspect, TooFewPointsForTheCurvatureFitIsRefusedWithAReason) {
+  // Twenty points pass the input checks but cannot carry a 24-neighbour curvature fit, let alone
+  // a triplet of rare features: refused, naming the count.
+  Scan scan;
+  scan.points = test::sampleBoxSurface(kHalf, 20, 5);
+  const InspectionResult result = inspect(boxModel(), scan, PipelineConfig());
+  EXPECT_EQ(result.registration, RegistrationStatus::kFailed);
+  EXPECT_EQ(result.status.code, StatusCode::kDegenerateInput) << result.status.message;
+  EXPECT_NE(result.status.message.find("20 points"), std::string::npos) << result.status.message;
 }
 
 }  // namespace
