@@ -38,9 +38,11 @@ struct GlobalRegistrationConfig {
   double min_fitness = 0.6;  ///< a final ICP fitness below this is a failed registration
   /// A pose whose residual σ exceeds this × the scan's own noise (at least 0.1 % of L) while it
   /// leaves more than 1 − `residual_fitness` of the scan outside the inliers is not trusted: a
-  /// slid or turned pose on a smooth part fits part of the scan and stretches the residual.
+  /// slid or turned pose fits part of the scan and stretches the residual. (A right pose on a
+  /// part with a smooth form error has a wide residual too, but nearly no point beyond 3σ; one
+  /// with outliers or local defects leaves points out, but its robust σ stays the noise.)
   double max_residual_ratio = 1.5;
-  double residual_fitness = 0.95;
+  double residual_fitness = 0.99;
 };
 
 /// @brief One message per invalid field; empty when valid.
@@ -68,10 +70,16 @@ struct GlobalRegistrationResult {
 struct VerificationSet {
   Points points;   ///< [m] scan frame
   Points normals;  ///< unit, outward (zero where unknown: no normal check)
+  /// The normals are known to point out of the material (a scanner's normals, a mesh's
+  /// winding): compared signed, so a pose that puts the scan on the wrong side of a wall (a
+  /// flip) explains nothing. Otherwise only their lines are compared.
+  bool oriented = false;
 };
 
 /// @brief Up to `count` scan cells, spread evenly over the cell list (deterministic).
-VerificationSet makeVerificationSet(const SurfaceGraph& scan, std::size_t count);
+VerificationSet makeVerificationSet(const SurfaceGraph& scan,
+                                    std::size_t count,
+                                    bool oriented = false);
 
 /// @brief Share of the set the pose explains: mean over points of max(0, 1 − d²/τ²) where d is
 /// the distance to the CAD surface, counted only where the normals agree.
@@ -101,12 +109,14 @@ int countExplainedFeatures(const Eigen::Isometry3d& T_cad_scan,
 /// @param scan scan cells (features and candidates index them)
 /// @param cad CAD cells
 /// @param cell_size [m], r_max [m]
+/// @param oriented_normals the scan's normals point out of the material (VerificationSet)
 GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
                                           const SurfaceGraph& cad,
                                           const CorrespondenceResult& candidates,
                                           const MeshQuery& cad_mesh,
                                           double cell_size,
                                           double r_max,
-                                          const GlobalRegistrationConfig& config);
+                                          const GlobalRegistrationConfig& config,
+                                          bool oriented_normals = false);
 
 }  // namespace freeform_inspection

@@ -48,10 +48,12 @@ struct IcpResult {
 };
 
 /// @brief The scan's own noise along the surface normal [m], without any CAD: the median over
-/// up to `samples` evenly spread points of the RMS distance of their 16 nearest neighbours to
-/// the neighbours' least-squares plane (corrected for the 3 fitted degrees of freedom). On a
-/// curved surface the estimate includes the curvature inside the neighbourhood, so it errs high.
-double estimateScanNoise(const Points& points, std::size_t samples = 1000);
+/// up to `samples` evenly spread points of the RMS distance of their neighbours within `radius`
+/// (at least 16 neighbours) to the neighbours' least-squares plane, corrected for the 3 fitted
+/// degrees of freedom. The radius must be well above the noise (a neighbourhood no wider than
+/// the noise cannot see it): the pipeline uses r_1. Curvature inside the neighbourhood adds to
+/// the estimate, so it errs high.
+double estimateScanNoise(const Points& points, double radius, std::size_t samples = 1000);
 
 /// @brief Refines `initial` by ICP.
 /// @param initial_cutoff [m] cut-off of the first iteration (the global stage's accuracy)

@@ -169,8 +169,9 @@ int countExplainedFeatures(const Eigen::Isometry3d& T_cad_scan,
   return pose.features_explained;
 }
 
-VerificationSet makeVerificationSet(const SurfaceGraph& scan, std::size_t count) {
+VerificationSet makeVerificationSet(const SurfaceGraph& scan, std::size_t count, bool oriented) {
   VerificationSet set;
+  set.oriented = oriented;
   const std::size_t n = scan.size();
   const std::size_t taken = std::min(n, count);
   for (std::size_t i = 0; i < taken; ++i) {
@@ -199,7 +200,9 @@ double verificationScore(const Eigen::Isometry3d& T_cad_scan,
       continue;
     }
     const Eigen::Vector3d normal = T_cad_scan.linear() * set.normals[i];
-    if (hasNormal(normal) && std::abs(normal.dot(closest.normal)) < min_cos) {
+    const double agreement =
+        set.oriented ? normal.dot(closest.normal) : std::abs(normal.dot(closest.normal));
+    if (hasNormal(normal) && agreement < min_cos) {
       continue;
     }
     sum += 1.0 - std::pow(closest.distance / truncation, 2);
@@ -223,7 +226,8 @@ GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
                                           const MeshQuery& cad_mesh,
                                           double cell_size,
                                           double r_max,
-                                          const GlobalRegistrationConfig& config) {
+                                          const GlobalRegistrationConfig& config,
+                                          bool oriented_normals) {
   GlobalRegistrationResult result;
   const auto& features = candidates.features;
   const std::size_t f_count = features.size();
@@ -300,7 +304,8 @@ GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
               for (int m = 0; m < 3 && normals_agree; ++m) {
                 const Eigen::Vector3d n = fit.pose.T_cad_scan.linear() * s[m].normal;
                 const Eigen::Vector3d& nc = cad.normals[static_cast<std::size_t>(cad_cells[m])];
-                normals_agree = !hasNormal(n) || !hasNormal(nc) || std::abs(n.dot(nc)) >= min_cos;
+                const double agreement = oriented_normals ? n.dot(nc) : std::abs(n.dot(nc));
+                normals_agree = !hasNormal(n) || !hasNormal(nc) || agreement >= min_cos;
               }
               if (!normals_agree) {
                 continue;
@@ -330,7 +335,8 @@ GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
   std::sort(fits.begin(), fits.end(), betterFit);
 
   // The best distinct fits are verified against the whole scan.
-  const VerificationSet set = makeVerificationSet(scan, config.verification_points);
+  const VerificationSet set =
+      makeVerificationSet(scan, config.verification_points, oriented_normals);
   Eigen::Vector3d reference = Eigen::Vector3d::Zero();
   for (const auto& p : set.points) {
     reference += p / static_cast<double>(set.points.size());

@@ -101,7 +101,7 @@ Eigen::Isometry3d pointToPointStep(const Pairs& pairs) {
 
 }  // namespace
 
-double estimateScanNoise(const Points& points, std::size_t samples) {
+double estimateScanNoise(const Points& points, double radius, std::size_t samples) {
   constexpr int kNeighbours = 16;
   if (points.size() < 2 * kNeighbours || samples == 0) {
     return 0.0;
@@ -113,7 +113,10 @@ double estimateScanNoise(const Points& points, std::size_t samples) {
 #pragma omp parallel for schedule(static)
   for (long s = 0; s < count; ++s) {
     const auto& query = points[static_cast<std::size_t>(s) * points.size() / taken];
-    const std::vector<Neighbour> neighbours = index.nearest(query, kNeighbours);
+    std::vector<Neighbour> neighbours = index.within(query, radius);
+    if (neighbours.size() < static_cast<std::size_t>(kNeighbours)) {
+      neighbours = index.nearest(query, kNeighbours);
+    }
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (const auto& n : neighbours) {
       mean += points[static_cast<std::size_t>(n.index)];
@@ -126,7 +129,8 @@ double estimateScanNoise(const Points& points, std::size_t samples) {
     }
     const double smallest =
         std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues()[0]);
-    rms[static_cast<std::size_t>(s)] = std::sqrt(smallest / (kNeighbours - 3));
+    rms[static_cast<std::size_t>(s)] =
+        std::sqrt(smallest / static_cast<double>(neighbours.size() - 3));
   }
   return median(rms);
 }

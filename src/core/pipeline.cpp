@@ -122,9 +122,11 @@ std::string formatLength(double metres) {
 
 // Features → candidates → triplets → verification → ICP. Fills the registration fields of
 // `result`; the status says why when no pose could be trusted.
+// `oriented`: the scan's normals point out of the material (see VerificationSet).
 void registerScan(const Model& model,
                   const Points& scan_points,
                   const DescriptorResult& scan,
+                  bool oriented,
                   const PipelineConfig& config,
                   InspectionResult* result) {
   Stopwatch watch{result};
@@ -162,14 +164,14 @@ void registerScan(const Model& model,
     return;
   }
   const GlobalRegistrationResult global = registerGlobally(
-      scan.graph, cad.graph, candidates, model.query(), cell, r_max, config.registration);
+      scan.graph, cad.graph, candidates, model.query(), cell, r_max, config.registration, oriented);
   if (!global.status.ok()) {
     watch.lap("global_registration");
     result->status = global.status;
     return;
   }
   const VerificationSet set =
-      makeVerificationSet(scan.graph, config.registration.verification_points);
+      makeVerificationSet(scan.graph, config.registration.verification_points, oriented);
   const std::vector<RefinedPose> refined = refineHypotheses(model, global.hypotheses, set, config);
   watch.lap("global_registration");
 
@@ -250,7 +252,7 @@ void registerScan(const Model& model,
                              candidates,
                              config.registration.pair_tolerance_cells * cell));
 
-  result->scan_noise = estimateScanNoise(scan_points);
+  result->scan_noise = estimateScanNoise(scan_points, 2.0 * cad.radii.front());
   const double noise_floor = std::max(result->scan_noise, 1e-3 * diagonal);
   const bool stretched = icp.sigma > config.registration.max_residual_ratio * noise_floor &&
                          icp.fitness < config.registration.residual_fitness;
@@ -378,7 +380,10 @@ InspectionResult inspect(const Model& model, const Scan& scan, const PipelineCon
     result.timings.push_back({"descriptors", secondsSince(descriptor_start)});
     result.status = descriptors.status;
     if (result.status.ok()) {
-      registerScan(model, cleaned.scan.points, descriptors, config, &result);
+      // A scanner's normals and a delivered mesh's winding point out of the material; normals
+      // this pipeline estimated (clouds without normals, grids triangulated here) may not.
+      const bool oriented = !scan.normals.empty() || !scan.faces.empty();
+      registerScan(model, cleaned.scan.points, descriptors, oriented, config, &result);
     }
   }
   if (result.registration != RegistrationStatus::kFailed) {

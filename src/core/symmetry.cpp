@@ -82,8 +82,10 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
   config.verification_points = 600;
   // A failed self-registration still leaves the principal-axis starts below.
   const GlobalRegistrationResult global =
-      registerGlobally(cad.graph, cad.graph, candidates, query, cell_size, r_max, config);
-  const VerificationSet set = makeVerificationSet(cad.graph, config.verification_points);
+      registerGlobally(cad.graph, cad.graph, candidates, query, cell_size, r_max, config, true);
+  // The CAD's normals are its faces' outward normals: a motion that turns the model inside
+  // out against itself is no symmetry.
+  const VerificationSet set = makeVerificationSet(cad.graph, config.verification_points, true);
   Eigen::Vector3d reference = Eigen::Vector3d::Zero();
   for (const auto& p : set.points) {
     reference += p / static_cast<double>(set.points.size());
