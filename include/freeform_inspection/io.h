@@ -71,4 +71,8 @@ Status savePointsPly(const std::string& path,
                      PlyCoordinateType type = PlyCoordinateType::kFloat32,
                      bool binary = true);
 
+/// @brief Writes a 4×4 transform as text, one row per line, 17 significant digits (the format
+/// of data/blade/blade_scan_T_cad_scan.txt and of make_case's truth files).
+Status saveTransform(const std::string& path, const Eigen::Matrix4d& matrix);
+
 }  // namespace freeform_inspection

@@ -158,24 +158,6 @@ void moveToScanFrame(Scan& scan, const Eigen::Isometry3d& T_scan_cad) {
   }
 }
 
-Status writeMatrix(const std::string& path, const Eigen::Matrix4d& matrix) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  for (int r = 0; r < 4 && out; ++r) {
-    char line[128];
-    std::snprintf(line,
-                  sizeof(line),
-                  "%.17g %.17g %.17g %.17g\n",
-                  matrix(r, 0),
-                  matrix(r, 1),
-                  matrix(r, 2),
-                  matrix(r, 3));
-    out << line;
-  }
-  out.close();
-  return out ? Status::success()
-             : Status::failure(StatusCode::kInvalidInput, "cannot write '" + path + "'");
-}
-
 Status writeBlade(const std::string& path, const BladeParameters& parameters) {
   const TriangleMesh mesh = generateBlade(parameters);
   std::cout << path << ": " << mesh.vertices.size() << " vertices, " << mesh.faces.size()
@@ -195,7 +177,7 @@ Status writeScan(const std::string& out_dir, std::uint32_t seed) {
   if (!status.ok()) {
     return status;
   }
-  return writeMatrix(out_dir + "/blade_scan_T_cad_scan.txt", T_scan_cad.inverse().matrix());
+  return saveTransform(out_dir + "/blade_scan_T_cad_scan.txt", T_scan_cad.inverse().matrix());
 }
 
 int fail(const std::string& message) {

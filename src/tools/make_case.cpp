@@ -117,24 +117,6 @@ std::string parseArguments(int argc, char** argv, Options& options) {
   return "";
 }
 
-Status writeMatrix(const std::string& path, const Eigen::Matrix4d& matrix) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  for (int r = 0; r < 4 && out; ++r) {
-    char line[128];
-    std::snprintf(line,
-                  sizeof(line),
-                  "%.17g %.17g %.17g %.17g\n",
-                  matrix(r, 0),
-                  matrix(r, 1),
-                  matrix(r, 2),
-                  matrix(r, 3));
-    out << line;
-  }
-  out.close();
-  return out ? Status::success()
-             : Status::failure(StatusCode::kInvalidInput, "cannot write '" + path + "'");
-}
-
 int fail(const std::string& message) {
   std::cerr << "make_case: " << message << "\n";
   return kExitFailure;
@@ -162,7 +144,7 @@ int run(int argc, char** argv) {
   Status status = savePointsPly(
       options.out_scan, made.scan.points, made.scan.normals, PlyCoordinateType::kFloat64, true);
   if (status.ok()) {
-    status = writeMatrix(options.out_truth, made.T_cad_scan.matrix());
+    status = saveTransform(options.out_truth, made.T_cad_scan.matrix());
   }
   if (!status.ok()) {
     return fail(status.message);

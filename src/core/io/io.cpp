@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <new>
 #include <utility>
 
@@ -252,6 +254,24 @@ ScanLoadResult loadScan(const std::string& path, double scale) {
     result.status = invalid("cannot load scan '" + path + "': " + e.what());
     return result;
   }
+}
+
+Status saveTransform(const std::string& path, const Eigen::Matrix4d& matrix) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  for (int r = 0; r < 4 && out; ++r) {
+    char line[128];
+    std::snprintf(line,
+                  sizeof(line),
+                  "%.17g %.17g %.17g %.17g\n",
+                  matrix(r, 0),
+                  matrix(r, 1),
+                  matrix(r, 2),
+                  matrix(r, 3));
+    out << line;
+  }
+  out.close();
+  return out ? Status::success()
+             : Status::failure(StatusCode::kInvalidInput, "cannot write '" + path + "'");
 }
 
 }  // namespace freeform_inspection
