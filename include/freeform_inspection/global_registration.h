@@ -74,6 +74,9 @@ struct VerificationSet {
   /// winding): compared signed, so a pose that puts the scan on the wrong side of a wall (a
   /// flip) explains nothing. Otherwise only their lines are compared.
   bool oriented = false;
+
+  /// Mean of the points: the reference point that tells distinct poses apart.
+  Eigen::Vector3d centroid() const;
 };
 
 /// @brief Up to `count` scan cells, spread evenly over the cell list (deterministic).

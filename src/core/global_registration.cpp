@@ -169,6 +169,14 @@ int countExplainedFeatures(const Eigen::Isometry3d& T_cad_scan,
   return pose.features_explained;
 }
 
+Eigen::Vector3d VerificationSet::centroid() const {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : points) {
+    mean += p / static_cast<double>(points.size());
+  }
+  return mean;
+}
+
 VerificationSet makeVerificationSet(const SurfaceGraph& scan, std::size_t count, bool oriented) {
   VerificationSet set;
   set.oriented = oriented;
@@ -337,10 +345,7 @@ GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
   // The best distinct fits are verified against the whole scan.
   const VerificationSet set =
       makeVerificationSet(scan, config.verification_points, oriented_normals);
-  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
-  for (const auto& p : set.points) {
-    reference += p / static_cast<double>(set.points.size());
-  }
+  const Eigen::Vector3d reference = set.centroid();
   const double truncation = config.verification_distance_cells * cell_size;
   for (const Fit& fit : fits) {
     const bool distinct = std::all_of(

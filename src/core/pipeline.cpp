@@ -177,10 +177,7 @@ void registerScan(const Model& model,
 
   const double coarse_truncation = config.registration.verification_distance_cells * cell;
   const double diagonal = model.bounds().diagonal();
-  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
-  for (const auto& p : set.points) {
-    reference += p / static_cast<double>(set.points.size());
-  }
+  const Eigen::Vector3d reference = set.centroid();
   // Contenders: distinct refined poses close to the best by the coarse score.
   std::vector<RefinedPose> contenders;
   for (const RefinedPose& pose : refined) {

@@ -86,10 +86,7 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
   // The CAD's normals are its faces' outward normals: a motion that turns the model inside
   // out against itself is no symmetry.
   const VerificationSet set = makeVerificationSet(cad.graph, config.verification_points, true);
-  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
-  for (const auto& p : set.points) {
-    reference += p / static_cast<double>(set.points.size());
-  }
+  const Eigen::Vector3d reference = set.centroid();
   const double truncation = config.verification_distance_cells * cell_size;
   IcpConfig config_icp;
   config_icp.max_iterations = 15;
