@@ -2,6 +2,7 @@
 // Copyright 2026 The freeform_inspection authors
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "freeform_inspection/descriptor.h"
 #include "freeform_inspection/mesh.h"
+#include "freeform_inspection/mesh_orientation.h"
 #include "freeform_inspection/mesh_query.h"
 #include "freeform_inspection/symmetry.h"
 #include "freeform_inspection/types.h"
@@ -53,8 +55,14 @@ class Model {
   double cellSize() const;
   /// Motions that map the model (nearly) onto itself, found once (symmetry.h).
   const std::vector<Symmetry>& symmetries() const { return symmetries_; }
+  /// Per face, a bit per edge (bit e: edge from corner e to corner e+1) set when the edge is on
+  /// the border of an open surface; empty for a closed mesh.
+  const std::vector<std::uint8_t>& faceBorderEdges() const { return face_border_edges_; }
+  /// How the mesh's winding was made consistent and outward on construction.
+  const OrientationResult& orientation() const { return orientation_; }
 
  private:
+  OrientationResult orientation_;  // before mesh_: filled while mesh_ is oriented
   TriangleMesh mesh_;
   BoundingBox bounds_;
   MeshTopology topology_;
@@ -65,6 +73,7 @@ class Model {
   std::unique_ptr<MeshQuery> query_;
   double cell_ratio_ = 0.0;
   std::vector<Symmetry> symmetries_;
+  std::vector<std::uint8_t> face_border_edges_;
 };
 
 /// Result of loading a model.

@@ -10,7 +10,9 @@
 #include <Eigen/Geometry>
 
 #include "freeform_inspection/correspondence.h"
+#include "freeform_inspection/defects.h"
 #include "freeform_inspection/descriptor.h"
+#include "freeform_inspection/deviation.h"
 #include "freeform_inspection/features.h"
 #include "freeform_inspection/global_registration.h"
 #include "freeform_inspection/icp.h"
@@ -25,10 +27,13 @@
 
 namespace freeform_inspection {
 
-/// Tolerance band on the signed deviation.
-struct ToleranceConfig {
-  double upper = 1e-4;   ///< [m] largest allowed positive deviation (excess material)
-  double lower = -1e-4;  ///< [m] most negative allowed deviation (missing material)
+/// When a registered part is judged.
+struct VerdictConfig {
+  /// FAIL when fewer evaluated points than this lie inside the tolerance band, even without a
+  /// defect region (0 = judge by defect regions only).
+  double min_in_tolerance_fraction = 0.0;
+  /// NOT_EVALUATED when the scan covers less of the CAD surface than this (0 = any view).
+  double min_coverage = 0.0;
 };
 
 /// Configuration of the whole pipeline, nested like config/default.yaml.
@@ -40,6 +45,9 @@ struct PipelineConfig {
   GlobalRegistrationConfig registration;
   IcpConfig icp;
   ToleranceConfig tolerance;
+  DeviationConfig deviation;
+  DefectConfig defects;
+  VerdictConfig verdict;
 };
 
 /// @brief Checks every field of the configuration.
@@ -54,30 +62,6 @@ enum class Verdict { kPass, kFail, kNotEvaluated };
 
 const char* toString(RegistrationStatus status);  ///< "ok" | "ambiguous" | "failed"
 const char* toString(Verdict verdict);            ///< "PASS" | "FAIL" | "NOT_EVALUATED"
-
-/// Statistics of the signed deviation over the evaluated scan points. Lengths in metres.
-struct DeviationStatistics {
-  std::size_t evaluated = 0;           ///< points with a CAD surface within reach
-  std::size_t unmatched = 0;           ///< points too far from the CAD to be part of it
-  double mean = 0.0;                   ///< [m]
-  double std = 0.0;                    ///< [m]
-  double rms = 0.0;                    ///< [m]
-  double min = 0.0;                    ///< [m]
-  double max = 0.0;                    ///< [m]
-  double p5 = 0.0;                     ///< [m]
-  double p50 = 0.0;                    ///< [m]
-  double p95 = 0.0;                    ///< [m]
-  double in_tolerance_fraction = 0.0;  ///< share of evaluated points inside the band
-  double coverage = 0.0;               ///< share of CAD area with scan points near it
-};
-
-/// A connected out-of-tolerance region.
-struct DefectRegion {
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< [m] CAD frame
-  std::size_t points = 0;                              ///< scan points in the region
-  double area = 0.0;                                   ///< [m^2]
-  double peak = 0.0;                                   ///< [m] signed, largest magnitude
-};
 
 /// Sizes at each stage.
 struct InspectionCounts {
@@ -102,6 +86,7 @@ struct InspectionResult {
   Status status;  ///< first stage that failed, or ok
   RegistrationStatus registration = RegistrationStatus::kFailed;
   Verdict verdict = Verdict::kNotEvaluated;
+  std::string verdict_reason;  ///< why PASS, FAIL or NOT_EVALUATED, naming the quantities
   Eigen::Isometry3d T_cad_scan = Eigen::Isometry3d::Identity();  ///< scan → CAD
   std::vector<Eigen::Isometry3d> alternatives;                   ///< other poses when ambiguous
   double rmse = std::numeric_limits<double>::quiet_NaN();        ///< [m] inlier RMS distance
@@ -110,8 +95,10 @@ struct InspectionResult {
   double noise_sigma = std::numeric_limits<double>::quiet_NaN();  ///< [m] robust σ of residuals
   double score = 0.0;  ///< verification score of the pose: share of the scan it explains
   double scan_noise = std::numeric_limits<double>::quiet_NaN();  ///< [m] the scan's own noise
-  DeviationStatistics deviation;
-  std::vector<DefectRegion> defects;
+  DeviationStatistics deviation;      ///< empty unless the registration is ok or ambiguous
+  std::vector<DefectRegion> defects;  ///< largest |peak| first
+  DeviationMap deviation_map;         ///< per scan point, CAD frame (empty when failed)
+  Triangles scan_faces;               ///< the cleaned scan's triangles (indices into the map)
   InspectionCounts counts;
   std::vector<StageTiming> timings;   ///< per stage, last entry "total"
   std::vector<std::string> warnings;  ///< non-fatal findings for the caller to log

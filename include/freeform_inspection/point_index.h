@@ -40,4 +40,8 @@ class PointIndex {
   std::unique_ptr<Impl> impl_;
 };
 
+/// @brief Median distance from a point to its nearest other point, over an even sample of at
+/// most `samples` of the indexed `points`: the sampling spacing of a scan [m]. 0 for < 2 points.
+double medianSpacing(const Points& points, const PointIndex& index, std::size_t samples = 2000);
+
 }  // namespace freeform_inspection

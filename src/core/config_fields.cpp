@@ -49,6 +49,13 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"icp/max_points", &config.icp.max_points},
       {"tolerance/upper", &config.tolerance.upper},
       {"tolerance/lower", &config.tolerance.lower},
+      {"deviation/max_distance_ratio", &config.deviation.max_distance_ratio},
+      {"deviation/coverage_distance_cells", &config.deviation.coverage_distance_cells},
+      {"deviation/histogram_bins", &config.deviation.histogram_bins},
+      {"defects/min_points", &config.defects.min_points},
+      {"defects/neighbour_spacings", &config.defects.neighbour_spacings},
+      {"verdict/min_in_tolerance_fraction", &config.verdict.min_in_tolerance_fraction},
+      {"verdict/min_coverage", &config.verdict.min_coverage},
   };
 }
 

@@ -66,6 +66,12 @@ DescriptorResult describeModel(const TriangleMesh& mesh,
   return computeDescriptors(refined.vertices, refined.faces, {}, radii, config);
 }
 
+// The deviation's sign needs one outward winding everywhere, whatever the exporter wrote.
+TriangleMesh orientedOutward(TriangleMesh mesh, OrientationResult* orientation) {
+  *orientation = orientOutward(&mesh);
+  return mesh;
+}
+
 }  // namespace
 
 std::optional<double> unitScale(const std::string& units) {
@@ -85,7 +91,7 @@ Model::Model(TriangleMesh mesh,
              std::string id,
              std::string source,
              const DescriptorConfig& descriptor_config)
-    : mesh_(std::move(mesh)),
+    : mesh_(orientedOutward(std::move(mesh), &orientation_)),
       bounds_(computeBoundingBox(mesh_.vertices)),
       topology_(analyzeTopology(mesh_)),
       id_(std::move(id)),
@@ -94,7 +100,8 @@ Model::Model(TriangleMesh mesh,
       descriptor_key_(descriptorCacheKey(mesh_, descriptor_config)),
       query_(std::make_unique<MeshQuery>(mesh_)),
       cell_ratio_(descriptor_config.cell_ratio),
-      symmetries_(findSymmetries(descriptors_, *query_, cellSize(), bounds_.diagonal())) {}
+      symmetries_(findSymmetries(descriptors_, *query_, cellSize(), bounds_.diagonal())),
+      face_border_edges_(borderEdgeMasks(mesh_)) {}
 
 double Model::cellSize() const {
   return descriptors_.radii.empty() ? 0.0 : cell_ratio_ * descriptors_.radii.front();
@@ -131,6 +138,12 @@ ModelLoadResult loadModel(const std::string& path,
     result.status = model->descriptors().status;
     result.status.message = "CAD model '" + path + "': " + result.status.message;
     return result;
+  }
+  if (model->orientation().flipped_faces > 0) {
+    result.warnings.push_back("CAD model '" + path +
+                              "': " + std::to_string(model->orientation().flipped_faces) +
+                              " faces were wound inward or inconsistently and were turned to "
+                              "face outward");
   }
   const MeshTopology& topology = model->topology();
   if (!topology.isClosedManifold()) {

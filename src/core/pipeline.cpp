@@ -293,6 +293,105 @@ void registerScan(const Model& model,
                            ", fitness " + std::to_string(result->fitness);
 }
 
+// Deviation, statistics, shape deviation and defect regions of a registered scan.
+void measurePart(const Model& model,
+                 const Scan& scan,
+                 const DescriptorResult& descriptors,
+                 const PipelineConfig& config,
+                 InspectionResult* result) {
+  DeviationMap& map = result->deviation_map;
+  map.points.resize(scan.points.size());
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    map.points[i] = result->T_cad_scan * scan.points[i];
+  }
+  const double diagonal = model.bounds().diagonal();
+  SurfaceDistances distances =
+      measureDeviation(model, map.points, config.deviation.max_distance_ratio * diagonal);
+  map.deviation = std::move(distances.deviation);
+  map.shape_deviation =
+      shapeDeviation(descriptors, model.descriptors(), result->T_cad_scan, distances.normals);
+  result->deviation =
+      summarizeDeviation(map.deviation, config.tolerance, config.deviation.histogram_bins);
+  summarizeShapeDeviation(map.shape_deviation, &result->deviation);
+  result->deviation.coverage = surfaceCoverage(
+      model, map.points, config.deviation.coverage_distance_cells * model.cellSize());
+  DefectResult defects =
+      findDefects(map.points, scan.faces, map.deviation, config.tolerance, config.defects);
+  result->defects = std::move(defects.regions);
+  map.defect = std::move(defects.point_region);
+  result->scan_faces = scan.faces;
+  // A band narrower than the scanner's own noise flags scattered points, not the part.
+  const double band = std::min(config.tolerance.upper, -config.tolerance.lower);
+  if (std::isfinite(result->scan_noise) && band < 3.0 * result->scan_noise) {
+    result->warnings.push_back(
+        "the tolerance band (" + formatLength(config.tolerance.lower) + " to " +
+        formatLength(config.tolerance.upper) + ") is narrower than 3x the scan's noise (" +
+        formatLength(result->scan_noise) + "): scattered points fall outside it by noise alone");
+  }
+}
+
+std::string describeDefect(const DefectRegion& defect) {
+  char text[160];
+  std::snprintf(text,
+                sizeof(text),
+                "%s of %.3g mm peak over %.3g mm^2 at (%.4g, %.4g, %.4g) m",
+                defect.sign < 0 ? "dent (missing material)" : "bump (excess material)",
+                defect.peak * 1e3,
+                defect.area * 1e6,
+                defect.centroid.x(),
+                defect.centroid.y(),
+                defect.centroid.z());
+  return text;
+}
+
+// The part's verdict, kept apart from how sure the registration is.
+void judge(const PipelineConfig& config, InspectionResult* result) {
+  const DeviationStatistics& stats = result->deviation;
+  const std::string band = "[" + formatLength(config.tolerance.lower) + ", " +
+                           formatLength(config.tolerance.upper) + "]";
+  result->verdict = Verdict::kNotEvaluated;
+  if (result->registration == RegistrationStatus::kFailed) {
+    result->verdict_reason = "not evaluated: " + result->status.message;
+    return;
+  }
+  if (result->registration == RegistrationStatus::kAmbiguous) {
+    result->verdict_reason = "not evaluated: the pose is ambiguous (" + result->status.message +
+                             "); the deviation shown is for the best pose";
+    return;
+  }
+  if (stats.evaluated == 0) {
+    result->verdict_reason = "not evaluated: no scan point lies on the CAD surface";
+    return;
+  }
+  if (stats.coverage < config.verdict.min_coverage) {
+    result->verdict_reason = "not evaluated: the scan covers " + std::to_string(stats.coverage) +
+                             " of the CAD surface (" + "verdict.min_coverage " +
+                             std::to_string(config.verdict.min_coverage) + ")";
+    return;
+  }
+  if (!result->defects.empty()) {
+    result->verdict = Verdict::kFail;
+    result->verdict_reason = std::to_string(result->defects.size()) +
+                             " region(s) outside the tolerance band " + band +
+                             "; largest: " + describeDefect(result->defects.front());
+    return;
+  }
+  if (stats.in_tolerance_fraction < config.verdict.min_in_tolerance_fraction) {
+    result->verdict = Verdict::kFail;
+    result->verdict_reason = "only " + std::to_string(stats.in_tolerance_fraction) +
+                             " of the points lie inside the tolerance band " + band +
+                             " (verdict.min_in_tolerance_fraction " +
+                             std::to_string(config.verdict.min_in_tolerance_fraction) + ")";
+    return;
+  }
+  result->verdict = Verdict::kPass;
+  result->verdict_reason = "no region of " + std::to_string(config.defects.min_points) +
+                           " or more connected points outside the tolerance band " + band + "; " +
+                           std::to_string(stats.in_tolerance_fraction) + " of " +
+                           std::to_string(stats.evaluated) + " points inside it, deviation " +
+                           formatLength(stats.min) + " to " + formatLength(stats.max);
+}
+
 }  // namespace
 
 const char* toString(RegistrationStatus status) {
@@ -341,11 +440,16 @@ std::vector<std::string> validate(const PipelineConfig& config) {
                            validate(config.icp)}) {
     errors.insert(errors.end(), list.begin(), list.end());
   }
-  if (!(config.tolerance.upper > 0.0 && std::isfinite(config.tolerance.upper))) {
-    errors.push_back("tolerance.upper must be a finite length > 0 [m]");
+  for (const auto& list :
+       {validate(config.tolerance), validate(config.deviation), validate(config.defects)}) {
+    errors.insert(errors.end(), list.begin(), list.end());
   }
-  if (!(config.tolerance.lower < 0.0 && std::isfinite(config.tolerance.lower))) {
-    errors.push_back("tolerance.lower must be a finite length < 0 [m]");
+  const VerdictConfig& verdict = config.verdict;
+  if (!(verdict.min_in_tolerance_fraction >= 0.0 && verdict.min_in_tolerance_fraction <= 1.0)) {
+    errors.push_back("verdict.min_in_tolerance_fraction must be in [0, 1]");
+  }
+  if (!(verdict.min_coverage >= 0.0 && verdict.min_coverage <= 1.0)) {
+    errors.push_back("verdict.min_coverage must be in [0, 1]");
   }
   return errors;
 }
@@ -381,12 +485,14 @@ InspectionResult inspect(const Model& model, const Scan& scan, const PipelineCon
       // this pipeline estimated (clouds without normals, grids triangulated here) may not.
       const bool oriented = !scan.normals.empty() || !scan.faces.empty();
       registerScan(model, cleaned.scan.points, descriptors, oriented, config, &result);
+      if (result.registration != RegistrationStatus::kFailed) {
+        const auto deviation_start = Clock::now();
+        measurePart(model, cleaned.scan, descriptors, config, &result);
+        result.timings.push_back({"deviation", secondsSince(deviation_start)});
+      }
     }
   }
-  if (result.registration != RegistrationStatus::kFailed) {
-    result.warnings.push_back(
-        "deviation, defects and the verdict are not implemented yet: verdict NOT_EVALUATED");
-  }
+  judge(config, &result);
   result.timings.push_back({"total", secondsSince(start)});
   return result;
 }

@@ -510,4 +510,22 @@ NeighbourTable nearestNeighbourTable(const Points& points, int k) {
 }
 
 }  // namespace internal
+
+double medianSpacing(const Points& points, const PointIndex& index, std::size_t samples) {
+  samples = std::min(points.size(), samples);
+  std::vector<double> spacing;
+  for (std::size_t s = 0; s < samples; ++s) {
+    const auto neighbours = index.nearest(points[s * points.size() / samples], 2);
+    if (neighbours.size() == 2) {
+      spacing.push_back(std::sqrt(neighbours[1].squared_distance));
+    }
+  }
+  if (spacing.empty()) {
+    return 0.0;
+  }
+  auto middle = spacing.begin() + static_cast<long>(spacing.size() / 2);
+  std::nth_element(spacing.begin(), middle, spacing.end());
+  return *middle;
+}
+
 }  // namespace freeform_inspection

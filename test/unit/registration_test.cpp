@@ -152,8 +152,14 @@ TEST(Registration, ReportsCountsAndEveryStageTiming) {
     stages.push_back(timing.stage);
     EXPECT_GE(timing.seconds, 0.0);
   }
-  const std::vector<std::string> expected = {
-      "clean", "descriptors", "features", "correspondences", "global_registration", "icp", "total"};
+  const std::vector<std::string> expected = {"clean",
+                                             "descriptors",
+                                             "features",
+                                             "correspondences",
+                                             "global_registration",
+                                             "icp",
+                                             "deviation",
+                                             "total"};
   EXPECT_EQ(stages, expected);
   EXPECT_LE(result.counts.correspondences, result.counts.features);
   EXPECT_GE(result.counts.correspondences, 1u);

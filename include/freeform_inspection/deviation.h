@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "freeform_inspection/descriptor.h"
+#include "freeform_inspection/types.h"
+
+/// @file deviation.h
+/// The signed deviation of a registered scan from the CAD surface, and its statistics.
+/// Sign convention: positive = material outside the nominal surface (along the outward CAD
+/// normal), negative = material missing. Lengths in metres.
+
+namespace freeform_inspection {
+
+class Model;
+
+/// Tolerance band on the signed deviation.
+struct ToleranceConfig {
+  double upper = 1e-4;   ///< [m] largest allowed positive deviation (excess material)
+  double lower = -1e-4;  ///< [m] most negative allowed deviation (missing material)
+};
+
+/// How deviations are measured and summarised.
+struct DeviationConfig {
+  /// Points farther than this × CAD diagonal from the CAD are not part of it (fixture, floor,
+  /// outliers): counted as unmatched, left out of the statistics.
+  double max_distance_ratio = 0.05;
+  /// A CAD vertex is covered when a scan point lies within this many surface-graph cells, or
+  /// within 2.5 scan spacings when the scan is sparser than that.
+  double coverage_distance_cells = 1.0;
+  int histogram_bins = 40;  ///< bins of the deviation histogram
+};
+
+/// @brief One message per invalid field; empty when valid.
+std::vector<std::string> validate(const ToleranceConfig& config);
+std::vector<std::string> validate(const DeviationConfig& config);
+
+/// Per-point results, one entry per cleaned scan point, in the CAD frame. Unmatched points
+/// (no CAD surface within reach, or beyond the border of an open CAD surface) have NaN
+/// deviation.
+struct DeviationMap {
+  Points points;                       ///< [m] scan points in the CAD frame
+  std::vector<float> deviation;        ///< [m] signed distance to the CAD surface, NaN unmatched
+  std::vector<float> shape_deviation;  ///< mean_k |V_k(scan) - V_k(CAD)|, NaN where unknown
+  std::vector<int> defect;             ///< index into InspectionResult::defects, -1 for none
+
+  std::size_t size() const { return points.size(); }
+};
+
+/// Statistics of the signed deviation over the evaluated (matched) scan points.
+struct DeviationStatistics {
+  std::size_t evaluated = 0;                  ///< points with a CAD surface within reach
+  std::size_t unmatched = 0;                  ///< points too far from the CAD to be part of it
+  double mean = 0.0;                          ///< [m]
+  double std = 0.0;                           ///< [m]
+  double rms = 0.0;                           ///< [m]
+  double min = 0.0;                           ///< [m]
+  double max = 0.0;                           ///< [m]
+  double p5 = 0.0;                            ///< [m]
+  double p50 = 0.0;                           ///< [m]
+  double p95 = 0.0;                           ///< [m]
+  double in_tolerance_fraction = 0.0;         ///< share of evaluated points inside the band
+  double coverage = 0.0;                      ///< share of CAD area with scan points near it
+  double shape_mean = 0.0;                    ///< mean shape deviation (descriptor difference) [-]
+  double shape_p95 = 0.0;                     ///< 95th percentile of the shape deviation [-]
+  std::vector<double> histogram_edges;        ///< [m] bin edges, one more than the counts
+  std::vector<std::size_t> histogram_counts;  ///< points per bin (outer bins take the tails)
+};
+
+/// Where each point meets the CAD surface.
+struct SurfaceDistances {
+  std::vector<float> deviation;  ///< [m] signed distance, NaN for unmatched points
+  Points normals;                ///< outward CAD normal at the closest point (zero: unmatched)
+};
+
+/// @brief Signed distance of every point (already in the CAD frame) to the CAD surface.
+/// Points beyond `max_distance` [m], or whose closest point is on the border of an open CAD
+/// surface with the offset mostly along the surface (the scan runs past the CAD's edge), are
+/// unmatched.
+SurfaceDistances measureDeviation(const Model& model,
+                                  const Points& points_cad,
+                                  double max_distance);
+
+/// @brief The paper's verification channel (§3.6.2): per scan point, mean_k |V_k(scan) -
+/// V_k(CAD)| between its descriptor cell and the CAD cell it lies on (the nearest CAD cell
+/// facing the same way as the CAD surface there). NaN where either is unknown.
+/// @param T_cad_scan the registered pose; `scan` holds the scan's descriptors.
+/// @param cad_normals from measureDeviation() for the same points.
+std::vector<float> shapeDeviation(const DescriptorResult& scan,
+                                  const DescriptorResult& cad,
+                                  const Eigen::Isometry3d& T_cad_scan,
+                                  const Points& cad_normals);
+
+/// @brief Share of the CAD surface area (its descriptor cells) that has a scan point within
+/// `distance` [m], raised to 2.5 scan spacings for a scan sparser than that.
+double surfaceCoverage(const Model& model, const Points& points_cad, double distance);
+
+/// @brief Statistics of `deviation` (NaN entries are unmatched) against the tolerance band.
+DeviationStatistics summarizeDeviation(const std::vector<float>& deviation,
+                                       const ToleranceConfig& tolerance,
+                                       int histogram_bins);
+
+/// @brief Fills `shape_mean` and `shape_p95` of `stats` from the per-point shape deviation.
+void summarizeShapeDeviation(const std::vector<float>& shape, DeviationStatistics* stats);
+
+}  // namespace freeform_inspection

@@ -1,0 +1,170 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+// Defect regions on a scanned plane (z = 0 is the nominal surface, so the deviation is z):
+// spherical-cap dents and bumps of known place, radius and depth, with and without noise, as
+// a mesh and as a cloud.
+#include "freeform_inspection/defects.h"
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "analytic_shapes.h"
+#include <gtest/gtest.h>
+
+#include "freeform_inspection/surface_defect.h"
+
+namespace freeform_inspection {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct PlaneScan {
+  Points points;
+  Triangles faces;
+  std::vector<float> deviation;
+};
+
+// A 100 mm square scanned on a 0.5 mm grid, with the defects applied and Gaussian noise.
+PlaneScan scanPlane(const std::vector<SurfaceDefect>& defects, double sigma, unsigned seed) {
+  const TriangleMesh grid = test::planarGrid(0.1, 200);
+  PlaneScan scan{grid.vertices, grid.faces, {}};
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  for (auto& p : scan.points) {
+    for (const auto& d : defects) {
+      p.z() += defectDisplacement(d, p);
+    }
+    if (sigma > 0.0) {
+      p.z() += noise(rng);
+    }
+    scan.deviation.push_back(static_cast<float>(p.z()));
+  }
+  return scan;
+}
+
+ToleranceConfig band(double half_width) {
+  ToleranceConfig tolerance;
+  tolerance.upper = half_width;
+  tolerance.lower = -half_width;
+  return tolerance;
+}
+
+// Area of the cap's footprint where |displacement| exceeds the band: a disc of radius ρ with
+// h − (R − sqrt(R² − ρ²)) = band.
+double discAbove(const SurfaceDefect& d, double limit) {
+  const double h = std::abs(d.depth);
+  const double sphere = (d.radius * d.radius + h * h) / (2.0 * h);
+  const double drop = h - limit;  // R − sqrt(R² − ρ²) = drop
+  const double rho2 = sphere * sphere - (sphere - drop) * (sphere - drop);
+  return kPi * rho2;
+}
+
+TEST(Defects, DentOnAMeshIsFoundWithItsPlaceSignPeakAndArea) {
+  const SurfaceDefect dent{Eigen::Vector3d(0.012, -0.02, 0.0), 0.01, -0.001};
+  const PlaneScan scan = scanPlane({dent}, 0.0, 1);
+  const DefectResult result =
+      findDefects(scan.points, scan.faces, scan.deviation, band(2e-4), DefectConfig());
+  ASSERT_EQ(result.regions.size(), 1u);
+  const DefectRegion& region = result.regions.front();
+  const double area = discAbove(dent, 2e-4);
+  // The centroid of the dented points: on the axis of the dent, below the nominal surface.
+  const Eigen::Vector3d offset = region.centroid - dent.centre;
+  std::printf("dent: area %.4g mm^2 (analytic %.4g), centroid %.3g mm off-axis, %.3g mm deep, "
+              "peak %.4g mm\n",
+              region.area * 1e6,
+              area * 1e6,
+              offset.head<2>().norm() * 1e3,
+              offset.z() * 1e3,
+              region.peak * 1e3);
+  EXPECT_EQ(region.sign, -1);
+  EXPECT_LT(offset.head<2>().norm(), 0.1e-3);
+  EXPECT_LT(offset.z(), -2e-4);
+  EXPECT_GT(offset.z(), -1e-3);
+  EXPECT_NEAR(region.peak, -0.001, 0.02 * 0.001);
+  EXPECT_NEAR(region.area, area, 0.05 * area);
+  EXPECT_LT(region.mean, -2e-4);
+  EXPECT_GT(region.mean, -0.001);
+  EXPECT_LE(region.bbox_min.x(), dent.centre.x() - 0.005);
+  EXPECT_GE(region.bbox_max.x(), dent.centre.x() + 0.005);
+  std::size_t members = 0;
+  for (const int r : result.point_region) {
+    members += r == 0 ? 1 : 0;
+  }
+  EXPECT_EQ(members, region.points);
+}
+
+TEST(Defects, CloudAndMeshGiveTheSameRegions) {
+  const std::vector<SurfaceDefect> defects = {{Eigen::Vector3d(-0.02, 0.02, 0.0), 0.008, 6e-4},
+                                              {Eigen::Vector3d(0.025, -0.01, 0.0), 0.012, -9e-4}};
+  const PlaneScan scan = scanPlane(defects, 2e-5, 3);
+  const auto mesh = findDefects(scan.points, scan.faces, scan.deviation, band(2e-4), {});
+  const auto cloud = findDefects(scan.points, {}, scan.deviation, band(2e-4), {});
+  ASSERT_EQ(mesh.regions.size(), 2u);
+  ASSERT_EQ(cloud.regions.size(), 2u);
+  // Sorted by |peak|: the dent (0.9 mm) first.
+  EXPECT_EQ(mesh.regions[0].sign, -1);
+  EXPECT_EQ(mesh.regions[1].sign, 1);
+  EXPECT_LT((mesh.regions[0].centroid - defects[1].centre).norm(), 1e-3);
+  EXPECT_LT((mesh.regions[1].centroid - defects[0].centre).norm(), 1e-3);
+  for (std::size_t r = 0; r < 2; ++r) {
+    EXPECT_EQ(cloud.regions[r].points, mesh.regions[r].points);
+    EXPECT_NEAR(cloud.regions[r].area, mesh.regions[r].area, 0.05 * mesh.regions[r].area);
+    EXPECT_DOUBLE_EQ(cloud.regions[r].peak, mesh.regions[r].peak);
+  }
+}
+
+TEST(Defects, NoiseAloneGivesNoRegionAtAFourSigmaBand) {
+  const double sigma = 5e-5;
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    const PlaneScan scan = scanPlane({}, sigma, seed);
+    std::size_t outside = 0;
+    for (const float d : scan.deviation) {
+      outside += std::abs(d) > 4.0 * sigma ? 1 : 0;
+    }
+    const auto mesh = findDefects(scan.points, scan.faces, scan.deviation, band(4 * sigma), {});
+    const auto cloud = findDefects(scan.points, {}, scan.deviation, band(4 * sigma), {});
+    std::printf("seed %u: %zu of %zu points beyond 4 sigma, %zu / %zu regions\n",
+                seed,
+                outside,
+                scan.points.size(),
+                mesh.regions.size(),
+                cloud.regions.size());
+    EXPECT_GT(outside, 0u);  // the band is crossed, yet by scattered points only
+    EXPECT_TRUE(mesh.regions.empty());
+    EXPECT_TRUE(cloud.regions.empty());
+  }
+}
+
+TEST(Defects, SmallRegionsAndUnmatchedPointsAreNotDefects) {
+  // A 1 mm-radius bump covers ~12 grid points: reported with min_points 5, not with 20.
+  const SurfaceDefect bump{Eigen::Vector3d(0.0, 0.0, 0.0), 0.001, 5e-4};
+  PlaneScan scan = scanPlane({bump}, 0.0, 1);
+  DefectConfig config;
+  config.min_points = 5;
+  EXPECT_EQ(findDefects(scan.points, scan.faces, scan.deviation, band(1e-4), config).regions.size(),
+            1u);
+  config.min_points = 20;
+  EXPECT_TRUE(
+      findDefects(scan.points, scan.faces, scan.deviation, band(1e-4), config).regions.empty());
+  // The same points unmatched (no CAD near them): nothing to judge.
+  for (auto& d : scan.deviation) {
+    if (d > 1e-4F) {
+      d = std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  config.min_points = 5;
+  EXPECT_TRUE(
+      findDefects(scan.points, scan.faces, scan.deviation, band(1e-4), config).regions.empty());
+}
+
+TEST(Defects, ConfigurationIsChecked) {
+  DefectConfig config;
+  EXPECT_TRUE(validate(config).empty());
+  config.min_points = 0;
+  config.neighbour_spacings = 0.5;
+  EXPECT_EQ(validate(config).size(), 2u);
+}
+
+}  // namespace
+}  // namespace freeform_inspection

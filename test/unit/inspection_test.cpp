@@ -1,0 +1,251 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+// The verdict on the shipped blade: generated scans at random poses (synthetic_scan.h), clean
+// or with a spherical-cap dent of known place and depth pressed into them (surface_defect.h).
+// Noise σ is a share of the CAD diagonal L; tolerances are multiples of σ.
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "test_shapes.h"
+#include <gtest/gtest.h>
+
+#include "freeform_inspection/model.h"
+#include "freeform_inspection/pipeline.h"
+#include "freeform_inspection/surface_defect.h"
+#include "freeform_inspection/synthetic_scan.h"
+
+namespace freeform_inspection {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const std::string kBlade = std::string(FREEFORM_DATA_DIR) + "/blade/blade.stl";
+
+const Model& blade() {
+  static const auto model = [] {
+    const ModelLoadResult loaded = loadModel(kBlade, 0.001, "blade");
+    EXPECT_TRUE(loaded.status.ok()) << loaded.status.message;
+    return loaded.model;
+  }();
+  return *model;
+}
+
+double diagonal() {
+  return blade().bounds().diagonal();
+}
+
+SyntheticScan makeCase(std::uint64_t seed, double noise_ratio, bool partial) {
+  SyntheticScanConfig config;
+  config.seed = seed;
+  config.noise_ratio = noise_ratio;
+  config.partial = partial;
+  const SyntheticScan truth = makeSyntheticScan(blade().query(), config);
+  EXPECT_TRUE(truth.status.ok()) << truth.status.message;
+  std::printf("seed %llu, noise %.2f %% of L, %s view\n",
+              static_cast<unsigned long long>(seed),
+              noise_ratio * 100.0,
+              partial ? "partial" : "full");
+  return truth;
+}
+
+PipelineConfig withBand(double half_width) {
+  PipelineConfig config;
+  config.tolerance.upper = half_width;
+  config.tolerance.lower = -half_width;
+  return config;
+}
+
+// A dent on the blade's broad face, under the scan point nearest the scan's centroid, with a
+// base radius that covers `area_share` of the CAD surface. Returns it in the CAD frame.
+SurfaceDefect pressDent(SyntheticScan* truth, double area_share, double depth) {
+  const MeshQuery& cad = blade().query();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : truth->scan.points) {
+    centroid += p / static_cast<double>(truth->scan.points.size());
+  }
+  std::size_t nearest = 0;
+  for (std::size_t i = 0; i < truth->scan.points.size(); ++i) {
+    if ((truth->scan.points[i] - centroid).squaredNorm() <
+        (truth->scan.points[nearest] - centroid).squaredNorm()) {
+      nearest = i;
+    }
+  }
+  SurfaceDefect dent;
+  dent.centre = cad.closest(truth->T_cad_scan * truth->scan.points[nearest]).point;
+  dent.radius = std::sqrt(area_share * blade().topology().area / kPi);
+  dent.depth = depth;
+  // Only the face the dent is pressed into moves, not the far side of the thin blade.
+  const Eigen::Vector3d facing = cad.closest(dent.centre).normal;
+  const Eigen::Matrix3d R_scan_cad = truth->T_cad_scan.linear().transpose();
+  for (auto& p : truth->scan.points) {
+    const ClosestPoint on = cad.closest(truth->T_cad_scan * p);
+    if (on.normal.dot(facing) > 0.5) {
+      p += defectDisplacement(dent, on.point) * (R_scan_cad * on.normal);
+    }
+  }
+  return dent;
+}
+
+double rotationDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() * 180.0 / kPi;
+}
+
+TEST(Inspection, CleanBladePassesAtAFourSigmaBand) {
+  const double sigma = 0.005 * diagonal();
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    const SyntheticScan truth = makeCase(seed, 0.005, false);
+    const InspectionResult result = inspect(blade(), truth.scan, withBand(4.0 * sigma));
+    const DeviationStatistics& s = result.deviation;
+    std::printf(
+        "  %s: %s; std %.3g sigma, mean %.3g sigma, in band %.4f, coverage %.3f, "
+        "%zu defects\n",
+        toString(result.verdict),
+        result.verdict_reason.c_str(),
+        s.std / sigma,
+        s.mean / sigma,
+        s.in_tolerance_fraction,
+        s.coverage,
+        result.defects.size());
+    ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+    EXPECT_EQ(result.verdict, Verdict::kPass) << result.verdict_reason;
+    EXPECT_TRUE(result.defects.empty());
+    EXPECT_NEAR(s.std, sigma, 0.15 * sigma);
+    EXPECT_NEAR(s.mean, 0.0, 0.2 * sigma);
+    EXPECT_GT(s.in_tolerance_fraction, 0.999);
+    EXPECT_GT(s.coverage, 0.95);
+    EXPECT_EQ(result.deviation_map.size(), result.counts.scan_points);
+    EXPECT_EQ(s.evaluated + s.unmatched, result.counts.scan_points);
+  }
+}
+
+TEST(Inspection, DentIsFoundInPlaceAndDoesNotPullThePose) {
+  const double sigma = 0.0005 * diagonal();
+  const double depth = -20.0 * sigma;
+  for (std::uint64_t seed = 3; seed <= 4; ++seed) {
+    const SyntheticScan clean = makeCase(seed, 0.0005, false);
+    SyntheticScan dented = clean;
+    const SurfaceDefect dent = pressDent(&dented, 0.05, depth);
+    const PipelineConfig config = withBand(4.0 * sigma);
+    const InspectionResult reference = inspect(blade(), clean.scan, config);
+    const InspectionResult result = inspect(blade(), dented.scan, config);
+    ASSERT_EQ(reference.registration, RegistrationStatus::kOk) << reference.status.message;
+    ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+    ASSERT_FALSE(result.defects.empty());
+    const DefectRegion& found = result.defects.front();
+    // The pose moved by the dent, measured where the scan is: rotation and centroid shift.
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const auto& p : clean.scan.points) {
+      centroid += p / static_cast<double>(clean.scan.points.size());
+    }
+    const double shift =
+        (result.T_cad_scan * centroid - reference.T_cad_scan * centroid).norm() / diagonal();
+    const double turn = rotationDeg(result.T_cad_scan, reference.T_cad_scan);
+    std::printf(
+        "  dent r %.3g mm, depth %.3g mm: found %s peak %.3g mm at %.3g mm from the "
+        "centre, %zu regions; pose moved %.4f deg, %.5f L\n",
+        dent.radius * 1e3,
+        depth * 1e3,
+        found.sign < 0 ? "dent" : "bump",
+        found.peak * 1e3,
+        (found.centroid - dent.centre).norm() * 1e3,
+        result.defects.size(),
+        turn,
+        shift);
+    EXPECT_EQ(result.verdict, Verdict::kFail);
+    EXPECT_EQ(result.defects.size(), 1u);  // one dent, one region
+    EXPECT_EQ(found.sign, -1);
+    EXPECT_LT((found.centroid - dent.centre).norm(), dent.radius);
+    EXPECT_NEAR(found.peak, depth, 0.2 * std::abs(depth));
+    EXPECT_LT(turn, 0.05);
+    EXPECT_LT(shift, 0.0005);
+    EXPECT_EQ(reference.verdict, Verdict::kPass) << reference.verdict_reason;
+  }
+}
+
+TEST(Inspection, ShapeDeviationHighlightsTheDent) {
+  const double sigma = 0.001 * diagonal();
+  SyntheticScan dented = makeCase(5, 0.001, false);
+  const SurfaceDefect dent = pressDent(&dented, 0.05, -20.0 * sigma);
+  const InspectionResult result = inspect(blade(), dented.scan, withBand(4.0 * sigma));
+  ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+  const DeviationMap& map = result.deviation_map;
+  double inside = 0.0;
+  double outside = 0.0;
+  std::size_t n_inside = 0;
+  std::size_t n_outside = 0;
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    if (!std::isfinite(map.shape_deviation[i])) {
+      continue;
+    }
+    const double from_centre = (map.points[i] - dent.centre).norm();
+    if (from_centre < 0.5 * dent.radius) {
+      inside += map.shape_deviation[i];
+      ++n_inside;
+    } else if (from_centre > 2.0 * dent.radius) {
+      outside += map.shape_deviation[i];
+      ++n_outside;
+    }
+  }
+  ASSERT_GT(n_inside, 0u);
+  ASSERT_GT(n_outside, 0u);
+  std::printf("shape deviation: %.4f in the dent, %.4f away from it (p95 %.4f)\n",
+              inside / n_inside,
+              outside / n_outside,
+              result.deviation.shape_p95);
+  EXPECT_GT(inside / n_inside, 2.0 * outside / n_outside);
+}
+
+TEST(Inspection, VerdictNeedsATrustedPoseAndEnoughCoverage) {
+  // Partial view: judged by default, NOT_EVALUATED when full coverage is demanded.
+  const SyntheticScan partial = makeCase(6, 0.002, true);
+  PipelineConfig config = withBand(4.0 * 0.002 * diagonal());
+  const InspectionResult judged = inspect(blade(), partial.scan, config);
+  ASSERT_EQ(judged.registration, RegistrationStatus::kOk) << judged.status.message;
+  EXPECT_EQ(judged.verdict, Verdict::kPass) << judged.verdict_reason;
+  EXPECT_LT(judged.deviation.coverage, 0.8);
+  config.verdict.min_coverage = 0.9;
+  const InspectionResult refused = inspect(blade(), partial.scan, config);
+  EXPECT_EQ(refused.verdict, Verdict::kNotEvaluated);
+  EXPECT_NE(refused.verdict_reason.find("min_coverage"), std::string::npos);
+
+  // A box is symmetric: an ambiguous pose is never judged, though its deviation is shown.
+  const Model box(test::makeBox(Eigen::Vector3d(0.05, 0.03, 0.02)), "box", "test");
+  SyntheticScanConfig box_case;
+  box_case.seed = 2;
+  box_case.noise_ratio = 0.002;
+  const SyntheticScan boxed = makeSyntheticScan(box.query(), box_case);
+  const InspectionResult box_result = inspect(box, boxed.scan, PipelineConfig());
+  if (box_result.registration != RegistrationStatus::kOk) {
+    EXPECT_EQ(box_result.verdict, Verdict::kNotEvaluated) << box_result.verdict_reason;
+  }
+  if (box_result.registration == RegistrationStatus::kAmbiguous) {
+    EXPECT_GT(box_result.deviation.evaluated, 0u);
+  }
+
+  // A scan the CAD cannot explain: NOT_EVALUATED, no deviation.
+  Scan flat;
+  for (int i = 0; i < 100; ++i) {
+    for (int j = 0; j < 100; ++j) {
+      flat.points.emplace_back(0.002 * i, 0.002 * j, 0.0005 * std::sin(0.3 * i));
+    }
+  }
+  const InspectionResult failed = inspect(blade(), flat, PipelineConfig());
+  EXPECT_EQ(failed.verdict, Verdict::kNotEvaluated);
+  EXPECT_TRUE(failed.deviation_map.points.empty());
+  EXPECT_FALSE(failed.verdict_reason.empty());
+}
+
+TEST(Inspection, ABandNarrowerThanTheNoiseIsFlagged) {
+  const SyntheticScan truth = makeCase(7, 0.005, false);
+  const InspectionResult result = inspect(blade(), truth.scan, withBand(0.001 * diagonal()));
+  ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+  EXPECT_EQ(result.verdict, Verdict::kFail);
+  bool flagged = false;
+  for (const auto& warning : result.warnings) {
+    flagged = flagged || warning.find("narrower than 3x the scan's noise") != std::string::npos;
+  }
+  EXPECT_TRUE(flagged);
+}
+
+}  // namespace
+}  // namespace freeform_inspection
