@@ -320,13 +320,14 @@ void measurePart(const Model& model,
   result->defects = std::move(defects.regions);
   map.defect = std::move(defects.point_region);
   result->scan_faces = scan.faces;
-  // A band narrower than the scanner's own noise flags scattered points, not the part.
+  // A band narrower than the residual noise of the fit flags scattered points, not the part.
   const double band = std::min(config.tolerance.upper, -config.tolerance.lower);
-  if (std::isfinite(result->scan_noise) && band < 3.0 * result->scan_noise) {
-    result->warnings.push_back(
-        "the tolerance band (" + formatLength(config.tolerance.lower) + " to " +
-        formatLength(config.tolerance.upper) + ") is narrower than 3x the scan's noise (" +
-        formatLength(result->scan_noise) + "): scattered points fall outside it by noise alone");
+  if (std::isfinite(result->noise_sigma) && band < 3.0 * result->noise_sigma) {
+    result->warnings.push_back("the tolerance band (" + formatLength(config.tolerance.lower) +
+                               " to " + formatLength(config.tolerance.upper) +
+                               ") is narrower than 3x the fit's residual noise (sigma " +
+                               formatLength(result->noise_sigma) +
+                               "): scattered points fall outside it by noise alone");
   }
 }
 

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <optional>
 
+#include "result_messages.h"
 #include <tf2_eigen/tf2_eigen.h>
 
 namespace freeform_inspection_ros {
@@ -70,6 +71,20 @@ std::string checkLayout(const sensor_msgs::PointCloud2& cloud) {
 }
 
 }  // namespace
+
+const char* statusName(std::uint8_t status) {
+  using Report = freeform_inspection::InspectionReport;
+  switch (status) {
+    case Report::PASS:
+      return "PASS";
+    case Report::FAIL:
+      return "FAIL";
+    case Report::NOT_EVALUATED:
+      return "NOT_EVALUATED";
+    default:
+      return "ERROR";
+  }
+}
 
 std::string errorCode(fi::StatusCode code) {
   std::string text = fi::toString(code);
@@ -149,16 +164,27 @@ freeform_inspection::InspectionReport toReport(const fi::InspectionResult& resul
   Report report;
   report.header = scan_header;
   report.registration_status = fi::toString(result.registration);
-  report.message = result.status.message;
-  if (!result.status.ok() && result.status.code != fi::StatusCode::kAmbiguous) {
+  // ERROR is for input the pipeline could not use; a scan that was read but not registered
+  // (or registered ambiguously) is NOT_EVALUATED, with the reason and its code.
+  const fi::StatusCode code = result.status.code;
+  const bool bad_input = code == fi::StatusCode::kInvalidInput ||
+                         code == fi::StatusCode::kDegenerateInput ||
+                         code == fi::StatusCode::kUnitsMismatch;
+  if (bad_input) {
     report.status = Report::ERROR;
-    report.error_code = errorCode(result.status.code);
+    report.message = result.status.message;
   } else if (result.verdict == fi::Verdict::kPass) {
     report.status = Report::PASS;
+    report.message = result.verdict_reason;
   } else if (result.verdict == fi::Verdict::kFail) {
     report.status = Report::FAIL;
+    report.message = result.verdict_reason;
   } else {
     report.status = Report::NOT_EVALUATED;
+    report.message = result.verdict_reason.empty() ? result.status.message : result.verdict_reason;
+  }
+  if (!result.status.ok()) {
+    report.error_code = errorCode(code);
   }
   report.transform = tf2::eigenToTransform(result.T_cad_scan.inverse());
   report.transform.header = scan_header;
@@ -171,6 +197,7 @@ freeform_inspection::InspectionReport toReport(const fi::InspectionResult& resul
   report.counts.features = static_cast<std::uint32_t>(result.counts.features);
   report.counts.candidates = static_cast<std::uint32_t>(result.counts.candidates);
   report.counts.correspondences = static_cast<std::uint32_t>(result.counts.correspondences);
+  fillDeviation(result, &report);
   report.deviation.n_invalid = static_cast<std::uint32_t>(result.counts.non_finite);
   for (const auto& timing : result.timings) {
     freeform_inspection::Timing stage;

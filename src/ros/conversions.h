@@ -2,6 +2,7 @@
 // Copyright 2026 The freeform_inspection authors
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include <sensor_msgs/PointCloud2.h>
@@ -21,6 +22,9 @@ struct CloudConversion {
   fi::Status status;  ///< kInvalidInput for inconsistent sizes or missing/odd x, y, z fields
   fi::Scan scan;      ///< every point as stored, NaN included (the pipeline removes and counts)
 };
+
+/// @brief "PASS", "FAIL", "NOT_EVALUATED" or "ERROR" for an InspectionReport status.
+const char* statusName(std::uint8_t status);
 
 /// @brief Upper-case machine-readable name of a status code, e.g. "INVALID_INPUT".
 std::string errorCode(fi::StatusCode code);

@@ -3,10 +3,13 @@
 #include "inspection_node.h"
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "conversions.h"
+#include "result_messages.h"
 #include <visualization_msgs/Marker.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include "freeform_inspection/pipeline.h"
 
@@ -18,7 +21,7 @@ using freeform_inspection::InspectionReport;
 using freeform_inspection::LoadModel;
 
 InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : nh_(std::move(nh)), pnh_(std::move(pnh)) {
+    : nh_(std::move(nh)), pnh_(std::move(pnh)), diagnostics_(nh_, pnh_) {
   const NodeConfigResult loaded = loadNodeConfig(pnh_);
   for (const auto& warning : loaded.warnings) {
     ROS_WARN_STREAM(warning);
@@ -32,6 +35,13 @@ InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   config_ = loaded.config;
   marker_pub_ = pnh_.advertise<visualization_msgs::Marker>("model_marker", 1, /*latch=*/true);
   result_pub_ = pnh_.advertise<InspectionReport>("result", 1, /*latch=*/true);
+  deviation_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("deviation", 1);
+  deviation_viz_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("deviation_viz", 1);
+  defects_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("defects", 1);
+  diagnostics_.setHardwareID("freeform_inspection");
+  diagnostics_.add("inspection", this, &InspectionNode::diagnose);
+  diagnostics_timer_ = nh_.createTimer(ros::Duration(1.0),
+                                       [this](const ros::TimerEvent&) { diagnostics_.update(); });
   // Queue size 1: the latest scan wins, older ones are dropped.
   scan_sub_ = nh_.subscribe("scan", 1, &InspectionNode::onScan, this);
   if (config_.model.empty()) {
@@ -49,12 +59,110 @@ InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   load_model_srv_ = service_nh.advertiseService("load_model", &InspectionNode::onLoadModel, this);
   service_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &service_queue_);
   service_spinner_->start();
+  if (config_.auto_inspect) {
+    auto_worker_ = std::thread(&InspectionNode::autoInspectLoop, this);
+  }
   ok_ = true;
 }
 
+InspectionNode::~InspectionNode() {
+  {
+    std::lock_guard<std::mutex> lock(scan_mutex_);
+    stopping_ = true;
+  }
+  scan_arrived_.notify_all();
+  if (auto_worker_.joinable()) {
+    auto_worker_.join();
+  }
+  if (service_spinner_) {
+    service_spinner_->stop();
+  }
+}
+
 void InspectionNode::onScan(const sensor_msgs::PointCloud2ConstPtr& cloud) {
-  std::lock_guard<std::mutex> lock(scan_mutex_);
-  last_scan_ = cloud;
+  {
+    std::lock_guard<std::mutex> lock(scan_mutex_);
+    last_scan_ = cloud;
+    ++scans_received_;
+    if (config_.auto_inspect) {
+      if (pending_scan_) {
+        ++scans_dropped_;  // the worker is busy: the latest scan wins
+      }
+      pending_scan_ = cloud;
+    }
+  }
+  scan_arrived_.notify_one();
+}
+
+void InspectionNode::autoInspectLoop() {
+  Inspect::Request request;
+  request.use_last_scan = false;
+  request.tolerance_upper = std::numeric_limits<double>::quiet_NaN();
+  request.tolerance_lower = std::numeric_limits<double>::quiet_NaN();
+  while (true) {
+    sensor_msgs::PointCloud2ConstPtr cloud;
+    {
+      std::unique_lock<std::mutex> lock(scan_mutex_);
+      scan_arrived_.wait(lock, [this] { return stopping_ || pending_scan_; });
+      if (stopping_) {
+        return;
+      }
+      cloud = pending_scan_;
+      pending_scan_.reset();
+    }
+    request.cloud = *cloud;
+    const InspectionReport report = inspectAndPublish(request);
+    ROS_INFO_STREAM("auto_inspect: " << statusName(report.status) << ": " << report.message);
+  }
+}
+
+std::shared_ptr<const fi::Model> InspectionNode::model() const {
+  std::lock_guard<std::mutex> lock(model_mutex_);
+  return model_;
+}
+
+void InspectionNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  InspectionReport last;
+  std::uint64_t inspections = 0;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    last = last_report_;
+    inspections = inspections_;
+  }
+  std::uint64_t received = 0;
+  std::uint64_t dropped = 0;
+  {
+    std::lock_guard<std::mutex> lock(scan_mutex_);
+    received = scans_received_;
+    dropped = scans_dropped_;
+  }
+  const auto current = model();
+  using Status = diagnostic_msgs::DiagnosticStatus;
+  if (!current) {
+    std::lock_guard<std::mutex> lock(model_mutex_);
+    status.summary(Status::ERROR, model_error_);
+  } else if (inspections == 0) {
+    status.summary(Status::OK, "model '" + current->id() + "' loaded, no inspection yet");
+  } else if (last.status == InspectionReport::ERROR) {
+    status.summary(Status::WARN, "last inspection: ERROR " + last.error_code + ": " + last.message);
+  } else {
+    status.summary(Status::OK, std::string("last inspection: ") + statusName(last.status));
+  }
+  status.add("model", current ? current->id() : std::string());
+  status.add("inspections", inspections);
+  status.add("scans received", received);
+  status.add("scans dropped", dropped);
+  if (inspections > 0) {
+    status.add("last status", statusName(last.status));
+    status.add("last registration", last.registration_status);
+    status.add("last rmse [m]", last.rmse);
+    status.add("last fitness", last.fitness);
+    status.add("last scan points", last.counts.scan_points);
+    status.add("last defects", last.defects.size());
+    for (const auto& timing : last.timings) {
+      status.add("time " + timing.stage + " [s]", timing.seconds);
+    }
+  }
 }
 
 sensor_msgs::PointCloud2ConstPtr InspectionNode::lastScan() const {
@@ -81,14 +189,19 @@ std::string InspectionNode::installModel(const std::string& uri,
   if (!loaded.status.ok()) {
     return loaded.status.message;
   }
-  model_ = loaded.model;
-  const Eigen::Vector3d extent = model_->bounds().extent();
-  ROS_INFO_STREAM("loaded model '" << id << "' from " << path << ": " << model_->mesh().faces.size()
+  const std::shared_ptr<const fi::Model> model = loaded.model;
+  {
+    std::lock_guard<std::mutex> lock(model_mutex_);
+    model_ = model;
+    model_error_.clear();
+  }
+  const Eigen::Vector3d extent = model->bounds().extent();
+  ROS_INFO_STREAM("loaded model '" << id << "' from " << path << ": " << model->mesh().faces.size()
                                    << " faces, extent " << extent.transpose() << " m");
-  marker_pub_.publish(modelMarker(*model_, config_.part_frame));
+  marker_pub_.publish(modelMarker(*model, config_.part_frame));
   if (summary != nullptr) {
-    summary->vertices = static_cast<std::uint32_t>(model_->mesh().vertices.size());
-    summary->faces = static_cast<std::uint32_t>(model_->mesh().faces.size());
+    summary->vertices = static_cast<std::uint32_t>(model->mesh().vertices.size());
+    summary->faces = static_cast<std::uint32_t>(model->mesh().faces.size());
     summary->extent = {extent.x(), extent.y(), extent.z()};
     summary->diagonal = extent.norm();
   }
@@ -106,14 +219,16 @@ bool InspectionNode::onLoadModel(LoadModel::Request& request, LoadModel::Respons
   return true;  // the outcome is in the response, never a failed call
 }
 
-InspectionReport InspectionNode::inspect(const Inspect::Request& request) {
-  if (!model_) {
+InspectionReport InspectionNode::inspect(const Inspect::Request& request,
+                                         const std::shared_ptr<const fi::Model>& model) {
+  if (!model) {
+    std::lock_guard<std::mutex> lock(model_mutex_);
     return errorReport("MODEL_NOT_LOADED", model_error_);
   }
-  if (!request.model_id.empty() && request.model_id != model_->id()) {
+  if (!request.model_id.empty() && request.model_id != model->id()) {
     return errorReport(
         "UNKNOWN_MODEL",
-        "model '" + request.model_id + "' is not loaded (loaded: '" + model_->id() + "')");
+        "model '" + request.model_id + "' is not loaded (loaded: '" + model->id() + "')");
   }
   sensor_msgs::PointCloud2ConstPtr cloud =
       request.use_last_scan ? lastScan()
@@ -125,7 +240,10 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request) {
   }
   const CloudConversion converted = cloudToScan(*cloud);
   if (!converted.status.ok()) {
-    return errorReport(errorCode(converted.status.code), converted.status.message);
+    InspectionReport report =
+        errorReport(errorCode(converted.status.code), converted.status.message);
+    report.header = cloud->header;
+    return report;
   }
   fi::PipelineConfig pipeline = config_.pipeline;
   if (std::isfinite(request.tolerance_upper) && request.tolerance_upper > 0.0) {
@@ -134,21 +252,55 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request) {
   if (std::isfinite(request.tolerance_lower) && request.tolerance_lower < 0.0) {
     pipeline.tolerance.lower = request.tolerance_lower;
   }
-  const fi::InspectionResult result = fi::inspect(*model_, converted.scan, pipeline);
+  const fi::InspectionResult result = fi::inspect(*model, converted.scan, pipeline);
   InspectionReport report = toReport(result, cloud->header, config_.part_frame);
   report.tolerance_upper = pipeline.tolerance.upper;
   report.tolerance_lower = pipeline.tolerance.lower;
+  publish(result, pipeline.tolerance, report);
   return report;
 }
 
-bool InspectionNode::onInspect(Inspect::Request& request, Inspect::Response& response) {
-  InspectionReport report = inspect(request);
+void InspectionNode::publish(const fi::InspectionResult& result,
+                             const fi::ToleranceConfig& tolerance,
+                             const InspectionReport& report) {
+  if (result.registration == fi::RegistrationStatus::kFailed) {
+    return;  // no pose: nothing to place in the part frame
+  }
+  if (config_.publish_tf && result.registration == fi::RegistrationStatus::kOk) {
+    tf_broadcaster_.sendTransform(report.transform);
+  }
+  std_msgs::Header part_header = report.header;
+  part_header.frame_id = config_.part_frame;
+  if (deviation_pub_.getNumSubscribers() > 0) {
+    deviation_pub_.publish(deviationCloud(result, tolerance, part_header, 0));
+  }
+  if (deviation_viz_pub_.getNumSubscribers() > 0) {
+    deviation_viz_pub_.publish(deviationCloud(
+        result, tolerance, part_header, static_cast<std::size_t>(config_.viz_max_points)));
+  }
+  defects_pub_.publish(defectMarkers(result, part_header));
+}
+
+InspectionReport InspectionNode::inspectAndPublish(const Inspect::Request& request) {
+  std::lock_guard<std::mutex> serial(inspect_mutex_);
+  const auto current = model();
+  InspectionReport report = inspect(request, current);
   report.part_id = request.part_id;
-  report.model_id = model_ ? model_->id() : "";
+  report.model_id = current ? current->id() : "";
   if (report.status == InspectionReport::ERROR) {
     ROS_WARN_STREAM("inspection " << report.error_code << ": " << report.message);
   }
   result_pub_.publish(report);
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++inspections_;
+    last_report_ = report;
+  }
+  return report;
+}
+
+bool InspectionNode::onInspect(Inspect::Request& request, Inspect::Response& response) {
+  const InspectionReport report = inspectAndPublish(request);
   response.status = report.status;
   response.message = report.message;
   response.report = report;

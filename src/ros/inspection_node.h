@@ -2,14 +2,19 @@
 // Copyright 2026 The freeform_inspection authors
 #pragma once
 
+#include <condition_variable>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 
 #include "parameters.h"
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/transform_broadcaster.h>
 
 #include "freeform_inspection/model.h"
 #include <freeform_inspection/Inspect.h>
@@ -19,13 +24,18 @@ namespace freeform_inspection_ros {
 
 /// The inspection node: converts and delegates, all geometry is in the core.
 ///
-/// Subscribes `scan`; publishes `~model_marker` and `~result` (latched); serves `~inspect` and
+/// Subscribes `scan`; publishes the part pose on tf, `~deviation`, `~deviation_viz`,
+/// `~defects`, `~model_marker` and `~result` (latched), and diagnostics; serves `~inspect` and
 /// `~load_model` on their own callback queue and thread, so a long inspection does not block
-/// incoming scans.
+/// incoming scans. With `~auto_inspect` a worker thread inspects the latest scan; scans that
+/// arrive while it is busy replace the waiting one and are counted as dropped.
 class InspectionNode {
  public:
   /// @param pnh private node handle ("~"): parameters, outputs and services live under it.
   InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  ~InspectionNode();
+  InspectionNode(const InspectionNode&) = delete;
+  InspectionNode& operator=(const InspectionNode&) = delete;
 
   /// False when the parameters were invalid; the reasons were logged with ROS_FATAL.
   bool ok() const { return ok_; }
@@ -36,34 +46,63 @@ class InspectionNode {
                  freeform_inspection::Inspect::Response& response);
   bool onLoadModel(freeform_inspection::LoadModel::Request& request,
                    freeform_inspection::LoadModel::Response& response);
+  void autoInspectLoop();
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   /// Loads and installs a model; returns "" or the reason it failed.
   std::string installModel(const std::string& uri,
                            const std::string& units,
                            const std::string& id,
                            freeform_inspection::LoadModel::Response* summary);
-  freeform_inspection::InspectionReport inspect(
+  /// Runs one inspection, publishes its outputs and returns the report.
+  freeform_inspection::InspectionReport inspectAndPublish(
       const freeform_inspection::Inspect::Request& request);
+  freeform_inspection::InspectionReport inspect(
+      const freeform_inspection::Inspect::Request& request,
+      const std::shared_ptr<const freeform_inspection::Model>& model);
+  void publish(const freeform_inspection::InspectionResult& result,
+               const freeform_inspection::ToleranceConfig& tolerance,
+               const freeform_inspection::InspectionReport& report);
   sensor_msgs::PointCloud2ConstPtr lastScan() const;
+  std::shared_ptr<const freeform_inspection::Model> model() const;
 
   ros::NodeHandle nh_;
   ros::NodeHandle pnh_;
   NodeConfig config_;
   bool ok_ = false;
 
-  std::shared_ptr<const freeform_inspection::Model> model_;  // only touched on service_queue_
+  mutable std::mutex model_mutex_;
+  std::shared_ptr<const freeform_inspection::Model> model_;
   std::string model_error_;  // why no model is loaded, for the Inspect answer
 
+  std::mutex inspect_mutex_;  // one inspection at a time (service, action or auto)
+
   mutable std::mutex scan_mutex_;
+  std::condition_variable scan_arrived_;
   sensor_msgs::PointCloud2ConstPtr last_scan_;
+  sensor_msgs::PointCloud2ConstPtr pending_scan_;  // auto_inspect: waiting for the worker
+  bool stopping_ = false;
+  std::uint64_t scans_received_ = 0;
+  std::uint64_t scans_dropped_ = 0;
+
+  mutable std::mutex stats_mutex_;
+  std::uint64_t inspections_ = 0;
+  freeform_inspection::InspectionReport last_report_;
 
   ros::Subscriber scan_sub_;
   ros::Publisher marker_pub_;
   ros::Publisher result_pub_;
+  ros::Publisher deviation_pub_;
+  ros::Publisher deviation_viz_pub_;
+  ros::Publisher defects_pub_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  diagnostic_updater::Updater diagnostics_;
+  ros::Timer diagnostics_timer_;
   ros::CallbackQueue service_queue_;
   ros::ServiceServer inspect_srv_;
   ros::ServiceServer load_model_srv_;
   std::unique_ptr<ros::AsyncSpinner> service_spinner_;
+  std::thread auto_worker_;
 };
 
 }  // namespace freeform_inspection_ros

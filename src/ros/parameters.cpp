@@ -3,6 +3,7 @@
 #include "parameters.h"
 
 #include <set>
+#include <string>
 
 #include <ros/package.h>
 #include <ros/param.h>
@@ -15,7 +16,13 @@ namespace {
 
 namespace fi = freeform_inspection;
 
-const std::vector<std::string> kNodeKeys = {"model", "model_units", "model_id", "part_frame"};
+const std::vector<std::string> kNodeKeys = {"model",
+                                            "model_units",
+                                            "model_id",
+                                            "part_frame",
+                                            "publish_tf",
+                                            "auto_inspect",
+                                            "viz_max_points"};
 
 struct ReadParam {
   const ros::NodeHandle& pnh;
@@ -58,6 +65,9 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   pnh.param("model_units", config.model_units, config.model_units);
   pnh.param("model_id", config.model_id, config.model_id);
   pnh.param("part_frame", config.part_frame, config.part_frame);
+  pnh.param("publish_tf", config.publish_tf, config.publish_tf);
+  pnh.param("auto_inspect", config.auto_inspect, config.auto_inspect);
+  pnh.param("viz_max_points", config.viz_max_points, config.viz_max_points);
   std::set<std::string> known(kNodeKeys.begin(), kNodeKeys.end());
   for (const auto& field : fi::configFields(config.pipeline)) {
     std::visit(ReadParam{pnh, field.key, &result.errors}, field.target);
@@ -66,6 +76,10 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   if (!config.model.empty() && !fi::unitScale(config.model_units)) {
     result.errors.push_back("~model_units must be 'm', 'mm' or 'in' (got '" + config.model_units +
                             "'): CAD units are never guessed");
+  }
+  if (config.viz_max_points < 1) {
+    result.errors.push_back("~viz_max_points must be at least 1 (got " +
+                            std::to_string(config.viz_max_points) + ")");
   }
   if (config.part_frame.empty()) {
     result.errors.push_back("~part_frame must not be empty");

@@ -17,6 +17,9 @@ struct NodeConfig {
   std::string model_units;           ///< "m", "mm" or "in"; required when `model` is set
   std::string model_id = "default";  ///< name of the start-up model in Inspect requests
   std::string part_frame = "part";   ///< tf child frame of the part pose and of the CAD marker
+  bool publish_tf = true;            ///< broadcast the part pose when the registration is ok
+  bool auto_inspect = false;         ///< inspect every scan arriving on `scan` (latest wins)
+  int viz_max_points = 20000;        ///< ~deviation_viz carries at most this many points
   freeform_inspection::PipelineConfig pipeline;  ///< ~input/*, ~tolerance/*
 };
 

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <mutex>
 #include <string>
+#include <vector>
 
 #include "analytic_clouds.h"
 #include <gtest/gtest.h>
@@ -14,9 +16,11 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/Marker.h>
 
 #include "freeform_inspection/io.h"
+#include "freeform_inspection/surface_defect.h"
 #include <freeform_inspection/Inspect.h>
 #include <freeform_inspection/InspectionReport.h>
 #include <freeform_inspection/LoadModel.h>
@@ -29,6 +33,7 @@ using freeform_inspection::LoadModel;
 
 const ros::Duration kWait(30.0);  // generous: the node loads the model before advertising
 const std::string kNode = "/freeform_inspection";
+tf2_ros::Buffer* tf_buffer = nullptr;  // filled by a listener started in main()
 
 std::string param(const std::string& name) {
   std::string value;
@@ -102,29 +107,146 @@ Eigen::Isometry3d sampleTruth() {
   return Eigen::Isometry3d(m);
 }
 
-TEST(InspectionNode, RegistersTheSampleScanAndReportsThePartPose) {
+double angleDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() * 180.0 / M_PI;
+}
+
+// Latest message on `topic` published after `call` ran (subscribed before it).
+template <typename Message, typename Call>
+boost::shared_ptr<const Message> receiveDuring(const std::string& topic, Call call) {
+  ros::NodeHandle nh;
+  boost::shared_ptr<const Message> received;
+  std::mutex mutex;
+  ros::Subscriber sub =
+      nh.subscribe<Message>(topic, 1, [&](const boost::shared_ptr<const Message>& message) {
+        std::lock_guard<std::mutex> lock(mutex);
+        received = message;
+      });
+  for (int i = 0; i < 100 && sub.getNumPublishers() == 0; ++i) {
+    ros::Duration(0.05).sleep();  // connection handshake, not a result wait
+  }
+  call();
+  for (int i = 0; i < 200; ++i) {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (received) {
+        return received;
+      }
+    }
+    ros::Duration(0.05).sleep();
+  }
+  return nullptr;
+}
+
+TEST(InspectionNode, RegistersTheSampleScanJudgesItAndPublishesPoseAndDeviation) {
   const auto scan = freeform_inspection::loadScan(param("sample_scan"), 1.0);
   ASSERT_TRUE(scan.status.ok()) << scan.status.message;
-  const auto response = callInspect(cloudRequest(toCloud(scan.scan.points, "scanner")));
-  // Registered; the verdict (deviation against tolerances) is not computed yet.
-  EXPECT_EQ(response.status, Inspect::Response::NOT_EVALUATED) << response.message;
+  Inspect::Response response;
+  const auto cloud = receiveDuring<sensor_msgs::PointCloud2>(kNode + "/deviation", [&] {
+    response = callInspect(cloudRequest(toCloud(scan.scan.points, "scanner")));
+  });
+  // The sample is the CAD sampled with σ = 0.02 mm noise: inside the default ±0.1 mm band.
+  EXPECT_EQ(response.status, Inspect::Response::PASS) << response.message;
   EXPECT_EQ(response.report.registration_status, "ok") << response.message;
+  const auto& deviation = response.report.deviation;
+  EXPECT_NEAR(deviation.std, 2e-5, 0.2 * 2e-5);
+  EXPECT_NEAR(deviation.mean, 0.0, 5e-6);
+  EXPECT_GT(deviation.in_tolerance_fraction, 0.999);
+  EXPECT_GT(deviation.coverage, 0.95);
+  EXPECT_EQ(deviation.n_points + deviation.n_unmatched, scan.scan.points.size());
+  EXPECT_EQ(deviation.histogram_edges.size(), deviation.histogram_counts.size() + 1);
+  EXPECT_TRUE(response.report.defects.empty());
   // The report carries the part's pose in the scan frame: inverse(T_cad_scan).
   const Eigen::Isometry3d part_in_scan = tf2::transformToEigen(response.report.transform);
   const Eigen::Isometry3d truth = sampleTruth().inverse();
-  EXPECT_LT(
-      Eigen::AngleAxisd(part_in_scan.linear().transpose() * truth.linear()).angle() * 180.0 / M_PI,
-      0.5);
+  EXPECT_LT(angleDeg(part_in_scan, truth), 0.5);
   EXPECT_LT((part_in_scan.translation() - truth.translation()).norm(), 0.0005);
   EXPECT_EQ(response.report.part_id, "sn-0001");
   EXPECT_EQ(response.report.counts.scan_points, scan.scan.points.size());
   EXPECT_EQ(response.report.counts.scan_faces, 0u) << "an unorganized cloud has no faces";
   EXPECT_EQ(response.report.header.frame_id, "scanner");
   EXPECT_EQ(response.report.transform.child_frame_id, "part");
+  // The same pose on tf, at the scan's stamp.
+  ASSERT_NE(tf_buffer, nullptr);
+  std::string error;
+  ASSERT_TRUE(
+      tf_buffer->canTransform("scanner", "part", ros::Time(1234.5), ros::Duration(5.0), &error))
+      << error;
+  const Eigen::Isometry3d on_tf =
+      tf2::transformToEigen(tf_buffer->lookupTransform("scanner", "part", ros::Time(1234.5)));
+  EXPECT_LT(angleDeg(on_tf, truth), 0.5);
+  EXPECT_LT((on_tf.translation() - truth.translation()).norm(), 0.0005);
+  // The deviation cloud: every scan point, in the part frame, with its named fields.
+  ASSERT_TRUE(cloud) << "no cloud on ~deviation";
+  EXPECT_EQ(cloud->header.frame_id, "part");
+  EXPECT_EQ(cloud->header.stamp, ros::Time(1234.5));
+  EXPECT_EQ(static_cast<std::size_t>(cloud->width) * cloud->height, scan.scan.points.size());
+  std::vector<std::string> fields;
+  for (const auto& field : cloud->fields) {
+    fields.push_back(field.name);
+  }
+  EXPECT_EQ(fields, (std::vector<std::string>{"x", "y", "z", "deviation", "in_tolerance", "rgb"}));
+  sensor_msgs::PointCloud2ConstIterator<float> x(*cloud, "x");
+  sensor_msgs::PointCloud2ConstIterator<float> d(*cloud, "deviation");
+  const Eigen::Isometry3d T_cad_scan = sampleTruth();
+  double worst = 0.0;
+  for (std::size_t i = 0; i < scan.scan.points.size(); i += 97, x += 97, d += 97) {
+    // In the part frame: the truth maps the scan point there, up to the pose error.
+    const Eigen::Vector3d expected = T_cad_scan * scan.scan.points[i];
+    worst = std::max(worst, (Eigen::Vector3d(x[0], x[1], x[2]) - expected).norm());
+    EXPECT_LT(std::abs(*d), 1e-4);
+  }
+  EXPECT_LT(worst, 0.0005);
   const auto result =
       ros::topic::waitForMessage<InspectionReport>(kNode + "/result", ros::Duration(5.0));
   ASSERT_TRUE(result) << "no latched report on ~result";
   EXPECT_EQ(result->part_id, "sn-0001");
+}
+
+TEST(InspectionNode, DentedScanFailsWithTheDentInPlaceAndTighterToleranceFails) {
+  auto scan = freeform_inspection::loadScan(param("sample_scan"), 1.0);
+  ASSERT_TRUE(scan.status.ok()) << scan.status.message;
+  ASSERT_EQ(scan.scan.normals.size(), scan.scan.points.size());
+  // A 0.5 mm deep, 8 mm wide dent on the face nearest the scan's centroid.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : scan.scan.points) {
+    centroid += p / static_cast<double>(scan.scan.points.size());
+  }
+  std::size_t nearest = 0;
+  for (std::size_t i = 0; i < scan.scan.points.size(); ++i) {
+    if ((scan.scan.points[i] - centroid).norm() < (scan.scan.points[nearest] - centroid).norm()) {
+      nearest = i;
+    }
+  }
+  const freeform_inspection::SurfaceDefect dent{scan.scan.points[nearest], 0.008, -0.0005};
+  const Eigen::Vector3d facing = scan.scan.normals[nearest];
+  freeform_inspection::Scan dented = scan.scan;
+  for (std::size_t i = 0; i < dented.points.size(); ++i) {
+    if (dented.normals[i].dot(facing) > 0.5) {
+      dented.points[i] +=
+          freeform_inspection::defectDisplacement(dent, scan.scan.points[i]) * dented.normals[i];
+    }
+  }
+  const auto response = callInspect(cloudRequest(toCloud(dented.points, "scanner")));
+  EXPECT_EQ(response.status, Inspect::Response::FAIL) << response.message;
+  ASSERT_FALSE(response.report.defects.empty()) << response.message;
+  const auto& found = response.report.defects.front();
+  const Eigen::Vector3d where = sampleTruth() * dent.centre;
+  const Eigen::Vector3d centre(found.centroid.x, found.centroid.y, found.centroid.z);
+  EXPECT_EQ(response.report.defects.size(), 1u);
+  EXPECT_EQ(found.sign, -1);
+  EXPECT_LT((centre - where).norm(), dent.radius);
+  EXPECT_NEAR(found.peak, dent.depth, 0.2 * std::abs(dent.depth));
+  EXPECT_NE(response.message.find("dent"), std::string::npos) << response.message;
+
+  // The clean scan against a ±0.01 mm band (half the noise σ): FAIL, the band came from the call.
+  Inspect::Request tight = cloudRequest(toCloud(scan.scan.points, "scanner"));
+  tight.tolerance_upper = 1e-5;
+  tight.tolerance_lower = -1e-5;
+  const auto strict = callInspect(tight);
+  EXPECT_EQ(strict.status, Inspect::Response::FAIL) << strict.message;
+  EXPECT_DOUBLE_EQ(strict.report.tolerance_upper, 1e-5);
+  EXPECT_LT(strict.report.deviation.in_tolerance_fraction, 0.5);
 }
 
 TEST(InspectionNode, RefusesBadRequestsWithReasonsAndKeepsServing) {
@@ -206,7 +328,7 @@ TEST(InspectionNode, LoadModelRefusesBadPathsAndUnitsAndKeepsTheModel) {
   EXPECT_NE(bad_units.response.message.find("furlong"), std::string::npos);
 
   LoadModel good;
-  good.request.path = "package://freeform_inspection/data/blade/blade.stl";
+  good.request.path = "package://freeform_inspection/data/blade/blade_fine.stl";
   good.request.units = "mm";
   ASSERT_TRUE(ros::service::call(kNode + "/load_model", good));
   EXPECT_TRUE(good.response.success) << good.response.message;
@@ -220,5 +342,10 @@ int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "inspection_node_test");
   ros::NodeHandle nh;
+  ros::AsyncSpinner spinner(2);  // subscriptions and tf arrive while a test waits
+  spinner.start();
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  tf_buffer = &buffer;
   return RUN_ALL_TESTS();
 }

@@ -242,7 +242,7 @@ TEST(Inspection, ABandNarrowerThanTheNoiseIsFlagged) {
   EXPECT_EQ(result.verdict, Verdict::kFail);
   bool flagged = false;
   for (const auto& warning : result.warnings) {
-    flagged = flagged || warning.find("narrower than 3x the scan's noise") != std::string::npos;
+    flagged = flagged || warning.find("narrower than 3x the fit's residual noise") != std::string::npos;
   }
   EXPECT_TRUE(flagged);
 }

@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "result_messages.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include <sensor_msgs/point_cloud2_iterator.h>
+
+#include "freeform_inspection/deviation_colours.h"
+
+namespace freeform_inspection_ros {
+namespace {
+
+geometry_msgs::Point toPoint(const Eigen::Vector3d& p) {
+  geometry_msgs::Point point;
+  point.x = p.x();
+  point.y = p.y();
+  point.z = p.z();
+  return point;
+}
+
+// rviz reads "rgb" as a float whose bytes are 0x00RRGGBB.
+float packRgb(const fi::Rgb& colour) {
+  const std::uint32_t packed = (static_cast<std::uint32_t>(colour[0]) << 16U) |
+                               (static_cast<std::uint32_t>(colour[1]) << 8U) |
+                               static_cast<std::uint32_t>(colour[2]);
+  float value = 0.0F;
+  std::memcpy(&value, &packed, sizeof(value));
+  return value;
+}
+
+}  // namespace
+
+sensor_msgs::PointCloud2 deviationCloud(const fi::InspectionResult& result,
+                                        const fi::ToleranceConfig& tolerance,
+                                        const std_msgs::Header& header,
+                                        std::size_t max_points) {
+  const fi::DeviationMap& map = result.deviation_map;
+  const std::size_t total = map.size();
+  const std::size_t count = max_points == 0 ? total : std::min(total, max_points);
+  sensor_msgs::PointCloud2 cloud;
+  cloud.header = header;
+  sensor_msgs::PointCloud2Modifier modifier(cloud);
+  modifier.setPointCloud2Fields(6,
+                                "x",
+                                1,
+                                sensor_msgs::PointField::FLOAT32,
+                                "y",
+                                1,
+                                sensor_msgs::PointField::FLOAT32,
+                                "z",
+                                1,
+                                sensor_msgs::PointField::FLOAT32,
+                                "deviation",
+                                1,
+                                sensor_msgs::PointField::FLOAT32,
+                                "in_tolerance",
+                                1,
+                                sensor_msgs::PointField::UINT8,
+                                "rgb",
+                                1,
+                                sensor_msgs::PointField::FLOAT32);
+  modifier.resize(count);
+  cloud.is_dense = false;  // deviation may be NaN
+  sensor_msgs::PointCloud2Iterator<float> xyz(cloud, "x");
+  sensor_msgs::PointCloud2Iterator<float> deviation(cloud, "deviation");
+  sensor_msgs::PointCloud2Iterator<std::uint8_t> inside(cloud, "in_tolerance");
+  sensor_msgs::PointCloud2Iterator<float> rgb(cloud, "rgb");
+  for (std::size_t k = 0; k < count; ++k, ++xyz, ++deviation, ++inside, ++rgb) {
+    const std::size_t i = k * total / count;  // even stride over the scan
+    xyz[0] = static_cast<float>(map.points[i].x());
+    xyz[1] = static_cast<float>(map.points[i].y());
+    xyz[2] = static_cast<float>(map.points[i].z());
+    const double d = map.deviation[i];
+    *deviation = static_cast<float>(d);
+    *inside = fi::inTolerance(d, tolerance) ? 1 : 0;
+    *rgb = packRgb(fi::deviationColour(d, tolerance));
+  }
+  return cloud;
+}
+
+visualization_msgs::MarkerArray defectMarkers(const fi::InspectionResult& result,
+                                              const std_msgs::Header& header) {
+  visualization_msgs::MarkerArray markers;
+  visualization_msgs::Marker clear;
+  clear.header = header;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  markers.markers.push_back(clear);
+  int id = 0;
+  for (const fi::DefectRegion& defect : result.defects) {
+    visualization_msgs::Marker sphere;
+    sphere.header = header;
+    sphere.ns = "defects";
+    sphere.id = id;
+    sphere.type = visualization_msgs::Marker::SPHERE;
+    sphere.action = visualization_msgs::Marker::ADD;
+    sphere.pose.position = toPoint(defect.centroid);
+    sphere.pose.orientation.w = 1.0;
+    // The disc of the region's area, as a ball: visible, and about the defect's size.
+    const double diameter = std::max(2.0 * std::sqrt(defect.area / M_PI), 1e-4);
+    sphere.scale.x = sphere.scale.y = sphere.scale.z = diameter;
+    sphere.color.a = 0.5F;
+    sphere.color.r = defect.sign > 0 ? 1.0F : 0.0F;
+    sphere.color.b = defect.sign > 0 ? 0.0F : 1.0F;
+    markers.markers.push_back(sphere);
+    visualization_msgs::Marker label = sphere;
+    label.ns = "defect_labels";
+    label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+    label.pose.position.z += diameter;
+    label.scale.x = label.scale.y = 0.0;
+    label.scale.z = std::max(0.3 * diameter, 1e-3);
+    label.color.r = label.color.g = label.color.b = label.color.a = 1.0F;
+    char text[64];
+    std::snprintf(text, sizeof(text), "#%d %+.3f mm", id, defect.peak * 1e3);
+    label.text = text;
+    markers.markers.push_back(label);
+    ++id;
+  }
+  return markers;
+}
+
+void fillDeviation(const fi::InspectionResult& result,
+                   freeform_inspection::InspectionReport* report) {
+  const fi::DeviationStatistics& s = result.deviation;
+  auto& out = report->deviation;
+  out.n_points = static_cast<std::uint32_t>(s.evaluated);
+  out.n_unmatched = static_cast<std::uint32_t>(s.unmatched);
+  out.mean = s.mean;
+  out.std = s.std;
+  out.rms = s.rms;
+  out.min = s.min;
+  out.max = s.max;
+  out.p5 = s.p5;
+  out.p50 = s.p50;
+  out.p95 = s.p95;
+  out.in_tolerance_fraction = s.in_tolerance_fraction;
+  out.coverage = s.coverage;
+  out.histogram_edges = s.histogram_edges;
+  out.histogram_counts.assign(s.histogram_counts.begin(), s.histogram_counts.end());
+  const std::size_t scanned = result.counts.scan_points;
+  report->overlap = scanned > 0 ? static_cast<double>(s.evaluated) / scanned : 0.0;
+  std::uint32_t id = 0;
+  for (const fi::DefectRegion& defect : result.defects) {
+    freeform_inspection::Defect message;
+    message.id = id++;
+    message.sign = static_cast<std::int8_t>(defect.sign);
+    message.points = static_cast<std::uint32_t>(defect.points);
+    message.area = defect.area;
+    message.peak = defect.peak;
+    message.mean = defect.mean;
+    message.centroid = toPoint(defect.centroid);
+    message.bbox_min = toPoint(defect.bbox_min);
+    message.bbox_max = toPoint(defect.bbox_max);
+    report->defects.push_back(message);
+  }
+}
+
+}  // namespace freeform_inspection_ros
