@@ -21,6 +21,7 @@
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
 #include "freeform_inspection/synthetic_scan.h"
+#include "freeform_inspection/virtual_scanner.h"
 
 namespace fi = freeform_inspection;
 
@@ -34,6 +35,7 @@ struct Options {
   std::uint64_t first_seed = 1;
   bool json = false;
   bool mesh_copy = false;
+  bool camera = false;  // --camera: one VGA range image (virtual_scanner.h) per case
 };
 
 // The CAD mesh with noise of σ along the area-weighted vertex normals, moved like `generated`.
@@ -83,6 +85,8 @@ bool parse(int argc, char** argv, Options* options) {
       options->first_seed = static_cast<std::uint64_t>(std::atol(argv[++i]));
     } else if (flag == "--partial") {
       options->scan.partial = true;
+    } else if (flag == "--camera") {
+      options->camera = true;
     } else if (flag == "--mesh-copy") {
       options->mesh_copy = true;
     } else if (flag == "--json") {
@@ -139,18 +143,45 @@ int main(int argc, char** argv) {
         options.mesh_copy
             ? noisyMeshCopy(model.mesh(), generated, config.noise_ratio * diagonal, config.seed)
             : generated.scan;
+    Eigen::Isometry3d truth = generated.T_cad_scan;
+    std::size_t outliers = options.mesh_copy ? 0 : generated.outliers;
+    if (options.camera) {
+      fi::VirtualScannerConfig camera;
+      camera.seed = config.seed;
+      camera.fill_ratio = 0.8;
+      camera.noise_ratio = config.noise_ratio;
+      const fi::VirtualScan view = fi::makeVirtualScan(model.query(), camera);
+      if (!view.status.ok()) {
+        std::fprintf(stderr, "registration_eval: %s\n", view.status.message.c_str());
+        return 2;
+      }
+      scan = fi::Scan();
+      for (const auto& p : view.scan.points) {  // the measured points, in grid order
+        if (p.allFinite()) {
+          scan.points.push_back(p);
+        }
+      }
+      if (std::getenv("FI_KEEP_GRID") != nullptr) {
+        scan = view.scan;
+      }
+      truth = view.T_cad_scan;
+      outliers = 0;
+    }
     if (std::getenv("FI_NO_NORMALS") != nullptr) {
       scan.normals.clear();
     }
     const fi::InspectionResult result = fi::inspect(model, scan, fi::PipelineConfig());
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    const std::size_t surface = scan.points.size() - (options.mesh_copy ? 0 : generated.outliers);
-    for (std::size_t i = 0; i < surface; ++i) {
-      centroid += scan.points[i] / static_cast<double>(surface);
+    std::size_t surface = 0;
+    for (std::size_t i = 0; i + outliers < scan.points.size(); ++i) {
+      if (scan.points[i].allFinite()) {
+        centroid += scan.points[i];
+        ++surface;
+      }
     }
-    const double rotation = rotationErrorDeg(result.T_cad_scan, generated.T_cad_scan);
-    const double translation =
-        (result.T_cad_scan * centroid - generated.T_cad_scan * centroid).norm() / diagonal;
+    centroid /= static_cast<double>(std::max<std::size_t>(surface, 1));
+    const double rotation = rotationErrorDeg(result.T_cad_scan, truth);
+    const double translation = (result.T_cad_scan * centroid - truth * centroid).norm() / diagonal;
     const bool right = rotation < 2.0 && translation < 0.01;
     const bool is_ok = result.registration == fi::RegistrationStatus::kOk;
     ok += is_ok ? 1 : 0;

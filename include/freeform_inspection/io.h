@@ -39,7 +39,7 @@ MeshLoadResult loadMesh(const std::string& path, double scale);
 /// Result of loading a scan.
 struct ScanLoadResult {
   Status status;                       ///< kInvalidInput with a reason when nothing usable
-  Scan scan;                           ///< finite points in metres; faces for mesh files
+  Scan scan;                           ///< metres; faces for meshes; NaN kept only in a grid
   std::size_t file_points = 0;         ///< points as stored in the file (STL: 3 per triangle)
   std::size_t non_finite_removed = 0;  ///< NaN/inf points dropped (faces using them dropped too)
   std::vector<std::string> warnings;   ///< non-fatal findings
@@ -47,7 +47,10 @@ struct ScanLoadResult {
 
 /// @brief Loads a scan: PLY (ascii or binary, float or double x/y/z, optional nx/ny/nz and
 /// faces), PCD (through PCL: ascii, binary, binary_compressed), STL or OBJ (as meshes).
-/// Non-finite points are removed and counted.
+/// Non-finite points are removed and counted, except in an organized PCD (HEIGHT > 1): that keeps
+/// its grid, all WIDTH × HEIGHT points in row order with NaN holes (and normals) in place and
+/// scan.width / scan.height set; the pipeline removes and counts its non-finite points. PLY has no
+/// grid, so a PLY scan is always unorganized.
 /// @param path file to read; the format is chosen by the extension (case-insensitive).
 /// @param scale [m per file unit] multiplies every coordinate; must be finite and > 0.
 /// @return status kInvalidInput for missing, unreadable, malformed or empty files.
@@ -70,6 +73,14 @@ Status savePointsPly(const std::string& path,
                      const Points& normals,
                      PlyCoordinateType type = PlyCoordinateType::kFloat32,
                      bool binary = true);
+
+/// @brief Writes a scan as a PCD v0.7 point cloud: float32 x y z, plus normal_x/y/z when the scan
+/// has one normal per point (faces are not written). An organized scan keeps its grid (WIDTH ×
+/// HEIGHT, NaN points where nothing was measured); any other is WIDTH = points, HEIGHT = 1.
+/// @param binary `DATA binary` (little-endian) when true, `DATA ascii` otherwise.
+/// @return kInvalidInput when the normals or the grid do not match the points, or the file
+/// cannot be written.
+Status saveScanPcd(const std::string& path, const Scan& scan, bool binary = true);
 
 /// @brief Writes a 4×4 transform as text, one row per line, 17 significant digits (the format
 /// of data/blade/blade_scan_T_cad_scan.txt and of make_case's truth files).

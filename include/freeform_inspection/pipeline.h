@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -104,10 +105,20 @@ struct InspectionResult {
   std::vector<std::string> warnings;  ///< non-fatal findings for the caller to log
 };
 
+/// Called with the name of the stage about to start ("clean", "descriptors", "features",
+/// "correspondences", "global_registration", "icp", "deviation") and the rough share of the
+/// work done so far (0..1). Returning false stops the inspection before that stage: status
+/// kCancelled, verdict NOT_EVALUATED. Called on the caller's thread.
+using ProgressCallback = std::function<bool(const std::string& stage, double fraction)>;
+
 /// @brief Inspects one scan against a model.
 /// @param scan points in metres in the scanner's frame; non-finite points are removed and
 /// counted.
 /// @throw std::invalid_argument if `config` does not validate (a caller error).
-InspectionResult inspect(const Model& model, const Scan& scan, const PipelineConfig& config);
+/// @param progress optional: stage reports and cancellation between stages.
+InspectionResult inspect(const Model& model,
+                         const Scan& scan,
+                         const PipelineConfig& config,
+                         const ProgressCallback& progress = {});
 
 }  // namespace freeform_inspection

@@ -27,6 +27,7 @@ enum class StatusCode {
   kAmbiguous,           ///< several solutions explain the data equally well
   kRegistrationFailed,  ///< no pose explains the scan (too little shape, wrong part)
   kNotImplemented,      ///< the stage exists in the interface but not yet in the code
+  kCancelled,           ///< the caller's progress callback asked to stop
 };
 
 /// Short stable name of a status code ("ok", "invalid_input", ...), for logs and JSON.

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_set>
 
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/point_index.h"
+#include "freeform_inspection/surface_graph.h"
 
 namespace freeform_inspection {
 namespace {
@@ -174,9 +176,22 @@ double surfaceCoverage(const Model& model, const Points& points_cad, double dist
   if (points_cad.empty() || cells.size() == 0) {
     return 0.0;
   }
-  const PointIndex scan(points_cad);
-  // A sparse scan still covers the surface between its samples.
-  distance = std::max(distance, 2.5 * medianSpacing(points_cad, scan));
+  // One point per voxel of half the reach is as good as all of them for "is a point near", and
+  // keeps a 1M-point scan's tree small.
+  const std::vector<std::uint64_t> keys = voxelKeys(points_cad, 0.5 * distance);
+  std::unordered_set<std::uint64_t> seen;
+  Points kept;
+  for (std::size_t i = 0; i < points_cad.size(); ++i) {
+    if (seen.insert(keys[i]).second) {
+      kept.push_back(points_cad[i]);
+    }
+  }
+  const PointIndex scan(kept);
+  // A scan sparser than the voxels (thinning kept most of it) still covers the surface between
+  // its samples: reach 2.5 of its spacings.
+  if (2 * kept.size() > points_cad.size()) {
+    distance = std::max(distance, 2.5 * medianSpacing(kept, scan));
+  }
   double covered = 0.0;
   double total = 0.0;
   for (std::size_t c = 0; c < cells.size(); ++c) {

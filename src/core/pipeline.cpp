@@ -8,11 +8,18 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "pipeline_internal.h"
+
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/organized_mesh.h"
+#include "freeform_inspection/view_hints.h"
 
 namespace freeform_inspection {
 namespace {
+
+using internal::formatLength;
+using internal::judge;
+using internal::measurePart;
 
 using Clock = std::chrono::steady_clock;
 constexpr double kPi = 3.14159265358979323846;
@@ -35,12 +42,23 @@ CleanScanResult cleanWithGridFaces(const Scan& scan,
   return cleanScan(meshed, model_bounds, config);
 }
 
+// Stage timings, and the caller's progress callback between stages.
 struct Stopwatch {
   InspectionResult* result;
+  const ProgressCallback* progress = nullptr;
   Clock::time_point start = Clock::now();
   void lap(const std::string& stage) {
     result->timings.push_back({stage, secondsSince(start)});
     start = Clock::now();
+  }
+  // False, with the status set, when the caller asked to stop before `stage`.
+  bool proceed(const std::string& stage, double fraction) {
+    if (progress == nullptr || !*progress || (*progress)(stage, fraction)) {
+      return true;
+    }
+    result->status =
+        Status::failure(StatusCode::kCancelled, "inspection cancelled before stage " + stage);
+    return false;
   }
 };
 
@@ -114,12 +132,6 @@ std::vector<RefinedPose> refineHypotheses(const Model& model,
   return refined;
 }
 
-std::string formatLength(double metres) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.3g mm", metres * 1e3);
-  return text;
-}
-
 // Features → candidates → triplets → verification → ICP. Fills the registration fields of
 // `result`; the status says why when no pose could be trusted.
 // `oriented`: the scan's normals point out of the material (see VerificationSet).
@@ -128,27 +140,45 @@ void registerScan(const Model& model,
                   const DescriptorResult& scan,
                   bool oriented,
                   const PipelineConfig& config,
+                  const ProgressCallback& progress,
                   InspectionResult* result) {
-  Stopwatch watch{result};
+  Stopwatch watch{result, &progress};
+  if (!watch.proceed("features", 0.45)) {
+    return;
+  }
   const DescriptorResult& cad = model.descriptors();
   const double r_max = cad.radii.back();
   const double cell = model.cellSize();
   // A cell whose largest ball is cut by the edge of a partial scan has descriptors the CAD does
   // not share there: it cannot be a feature.
   GeodesicBallGrower grower(scan.graph);
+  double ball_share = config.features.min_ball_area;
   const auto whole_ball = [&](int cell) {
     double area = 0.0;
     for (const BallMember& member : grower.grow(cell, r_max)) {
       area += scan.graph.area[static_cast<std::size_t>(member.cell)];
     }
-    return area >= config.features.min_ball_area * kPi * r_max * r_max;
+    return area >= ball_share * kPi * r_max * r_max;
   };
-  const FeatureResult features =
+  FeatureResult features =
       selectFeatures(scan.graph.centroids, scan.cell_values, r_max, config.features, whole_ball);
+  // A narrow view (a blade seen edge-on) has few whole balls: accept balls cut down to half
+  // rather than give up, when that is what stands between the scan and a triplet.
+  if (static_cast<int>(features.cells.size()) < config.features.min_features) {
+    ball_share = 0.5 * config.features.min_ball_area;
+    FeatureResult relaxed =
+        selectFeatures(scan.graph.centroids, scan.cell_values, r_max, config.features, whole_ball);
+    if (relaxed.cells.size() > features.cells.size()) {
+      features = std::move(relaxed);
+    }
+  }
   watch.lap("features");
   result->counts.features = features.cells.size();
   if (!features.status.ok()) {
     result->status = features.status;
+    return;
+  }
+  if (!watch.proceed("correspondences", 0.47)) {
     return;
   }
   const CorrespondenceResult candidates = findCandidates(scan.cell_values,
@@ -163,6 +193,9 @@ void registerScan(const Model& model,
     result->status = candidates.status;
     return;
   }
+  if (!watch.proceed("global_registration", 0.5)) {
+    return;
+  }
   const GlobalRegistrationResult global = registerGlobally(
       scan.graph, cad.graph, candidates, model.query(), cell, r_max, config.registration, oriented);
   if (!global.status.ok()) {
@@ -174,6 +207,9 @@ void registerScan(const Model& model,
       makeVerificationSet(scan.graph, config.registration.verification_points, oriented);
   const std::vector<RefinedPose> refined = refineHypotheses(model, global.hypotheses, set, config);
   watch.lap("global_registration");
+  if (!watch.proceed("icp", 0.75)) {
+    return;
+  }
 
   const double coarse_truncation = config.registration.verification_distance_cells * cell;
   const double diagonal = model.bounds().diagonal();
@@ -293,104 +329,52 @@ void registerScan(const Model& model,
                            ", fitness " + std::to_string(result->fitness);
 }
 
-// Deviation, statistics, shape deviation and defect regions of a registered scan.
-void measurePart(const Model& model,
-                 const Scan& scan,
-                 const DescriptorResult& descriptors,
-                 const PipelineConfig& config,
-                 InspectionResult* result) {
-  DeviationMap& map = result->deviation_map;
-  map.points.resize(scan.points.size());
-  for (std::size_t i = 0; i < scan.points.size(); ++i) {
-    map.points[i] = result->T_cad_scan * scan.points[i];
-  }
-  const double diagonal = model.bounds().diagonal();
-  SurfaceDistances distances =
-      measureDeviation(model, map.points, config.deviation.max_distance_ratio * diagonal);
-  map.deviation = std::move(distances.deviation);
-  map.shape_deviation =
-      shapeDeviation(descriptors, model.descriptors(), result->T_cad_scan, distances.normals);
-  result->deviation =
-      summarizeDeviation(map.deviation, config.tolerance, config.deviation.histogram_bins);
-  summarizeShapeDeviation(map.shape_deviation, &result->deviation);
-  result->deviation.coverage = surfaceCoverage(
-      model, map.points, config.deviation.coverage_distance_cells * model.cellSize());
-  DefectResult defects =
-      findDefects(map.points, scan.faces, map.deviation, config.tolerance, config.defects);
-  result->defects = std::move(defects.regions);
-  map.defect = std::move(defects.point_region);
-  result->scan_faces = scan.faces;
-  // A band narrower than the residual noise of the fit flags scattered points, not the part.
-  const double band = std::min(config.tolerance.upper, -config.tolerance.lower);
-  if (std::isfinite(result->noise_sigma) && band < 3.0 * result->noise_sigma) {
-    result->warnings.push_back("the tolerance band (" + formatLength(config.tolerance.lower) +
-                               " to " + formatLength(config.tolerance.upper) +
-                               ") is narrower than 3x the fit's residual noise (sigma " +
-                               formatLength(result->noise_sigma) +
-                               "): scattered points fall outside it by noise alone");
-  }
-}
-
-std::string describeDefect(const DefectRegion& defect) {
-  char text[160];
-  std::snprintf(text,
-                sizeof(text),
-                "%s of %.3g mm peak over %.3g mm^2 at (%.4g, %.4g, %.4g) m",
-                defect.sign < 0 ? "dent (missing material)" : "bump (excess material)",
-                defect.peak * 1e3,
-                defect.area * 1e6,
-                defect.centroid.x(),
-                defect.centroid.y(),
-                defect.centroid.z());
-  return text;
-}
-
-// The part's verdict, kept apart from how sure the registration is.
-void judge(const PipelineConfig& config, InspectionResult* result) {
-  const DeviationStatistics& stats = result->deviation;
-  const std::string band = "[" + formatLength(config.tolerance.lower) + ", " +
-                           formatLength(config.tolerance.upper) + "]";
-  result->verdict = Verdict::kNotEvaluated;
-  if (result->registration == RegistrationStatus::kFailed) {
-    result->verdict_reason = "not evaluated: " + result->status.message;
+// clean → descriptors → registration → deviation, stopping at the first stage that is not ok
+// or that the caller cancels.
+void runStages(const Model& model,
+               const Scan& scan,
+               const PipelineConfig& config,
+               const ProgressCallback& progress,
+               Stopwatch* watch,
+               InspectionResult* result) {
+  const CleanScanResult cleaned = cleanWithGridFaces(scan, model.bounds(), config.input);
+  watch->lap("clean");
+  result->counts.scan_points = cleaned.scan.points.size();
+  result->counts.non_finite = cleaned.non_finite;
+  result->counts.scan_faces = cleaned.scan.faces.size();
+  result->status = cleaned.status;
+  if (!result->status.ok() || !watch->proceed("descriptors", 0.02)) {
     return;
   }
-  if (result->registration == RegistrationStatus::kAmbiguous) {
-    result->verdict_reason = "not evaluated: the pose is ambiguous (" + result->status.message +
-                             "); the deviation shown is for the best pose";
+  // The CAD's radii, so a partial scan gets the same descriptor as the full part.
+  // A range image's grid gives the deviation and the defects their connectivity, but its
+  // triangles' curvature drowns in noise above the pixel spacing: its descriptors come from
+  // the cloud estimator, with normals oriented towards the sensor when the grid says it was
+  // seen from the origin (view_hints.h). Delivered meshes keep the mesh estimator.
+  const bool range_image = scan.faces.empty() && scan.isOrganized();
+  const ViewHints hints =
+      range_image && scan.normals.empty() ? rangeImageViewHints(cleaned.scan) : ViewHints();
+  const DescriptorResult descriptors =
+      computeDescriptors(cleaned.scan.points,
+                         range_image ? Triangles() : cleaned.scan.faces,
+                         hints.normals.empty() ? cleaned.scan.normals : hints.normals,
+                         model.descriptors().radii,
+                         config.descriptor);
+  watch->lap("descriptors");
+  result->status = descriptors.status;
+  if (!result->status.ok()) {
     return;
   }
-  if (stats.evaluated == 0) {
-    result->verdict_reason = "not evaluated: no scan point lies on the CAD surface";
+  // A scanner's normals, a delivered mesh's winding and a range image's view point out of
+  // the material; normals this pipeline estimated otherwise may not.
+  const bool oriented = !scan.normals.empty() || !scan.faces.empty() || !hints.normals.empty();
+  registerScan(model, cleaned.scan.points, descriptors, oriented, config, progress, result);
+  if (result->registration == RegistrationStatus::kFailed || !watch->proceed("deviation", 0.9)) {
     return;
   }
-  if (stats.coverage < config.verdict.min_coverage) {
-    result->verdict_reason = "not evaluated: the scan covers " + std::to_string(stats.coverage) +
-                             " of the CAD surface (" + "verdict.min_coverage " +
-                             std::to_string(config.verdict.min_coverage) + ")";
-    return;
-  }
-  if (!result->defects.empty()) {
-    result->verdict = Verdict::kFail;
-    result->verdict_reason = std::to_string(result->defects.size()) +
-                             " region(s) outside the tolerance band " + band +
-                             "; largest: " + describeDefect(result->defects.front());
-    return;
-  }
-  if (stats.in_tolerance_fraction < config.verdict.min_in_tolerance_fraction) {
-    result->verdict = Verdict::kFail;
-    result->verdict_reason = "only " + std::to_string(stats.in_tolerance_fraction) +
-                             " of the points lie inside the tolerance band " + band +
-                             " (verdict.min_in_tolerance_fraction " +
-                             std::to_string(config.verdict.min_in_tolerance_fraction) + ")";
-    return;
-  }
-  result->verdict = Verdict::kPass;
-  result->verdict_reason = "no region of " + std::to_string(config.defects.min_points) +
-                           " or more connected points outside the tolerance band " + band + "; " +
-                           std::to_string(stats.in_tolerance_fraction) + " of " +
-                           std::to_string(stats.evaluated) + " points inside it, deviation " +
-                           formatLength(stats.min) + " to " + formatLength(stats.max);
+  watch->start = Clock::now();
+  measurePart(model, cleaned.scan, descriptors, config, result);
+  watch->lap("deviation");
 }
 
 }  // namespace
@@ -455,7 +439,10 @@ std::vector<std::string> validate(const PipelineConfig& config) {
   return errors;
 }
 
-InspectionResult inspect(const Model& model, const Scan& scan, const PipelineConfig& config) {
+InspectionResult inspect(const Model& model,
+                         const Scan& scan,
+                         const PipelineConfig& config,
+                         const ProgressCallback& progress) {
   const auto errors = validate(config);
   if (!errors.empty()) {
     throw std::invalid_argument("invalid pipeline configuration: " + joinMessages(errors));
@@ -463,35 +450,9 @@ InspectionResult inspect(const Model& model, const Scan& scan, const PipelineCon
   const auto start = Clock::now();
   InspectionResult result;
   result.counts.cad_vertices = model.mesh().vertices.size();
-
-  const auto clean_start = Clock::now();
-  const CleanScanResult cleaned = cleanWithGridFaces(scan, model.bounds(), config.input);
-  result.timings.push_back({"clean", secondsSince(clean_start)});
-  result.counts.scan_points = cleaned.scan.points.size();
-  result.counts.non_finite = cleaned.non_finite;
-  result.counts.scan_faces = cleaned.scan.faces.size();
-  result.status = cleaned.status;
-  if (result.status.ok()) {
-    const auto descriptor_start = Clock::now();
-    // The CAD's radii, so a partial scan gets the same descriptor as the full part.
-    const DescriptorResult descriptors = computeDescriptors(cleaned.scan.points,
-                                                            cleaned.scan.faces,
-                                                            cleaned.scan.normals,
-                                                            model.descriptors().radii,
-                                                            config.descriptor);
-    result.timings.push_back({"descriptors", secondsSince(descriptor_start)});
-    result.status = descriptors.status;
-    if (result.status.ok()) {
-      // A scanner's normals and a delivered mesh's winding point out of the material; normals
-      // this pipeline estimated (clouds without normals, grids triangulated here) may not.
-      const bool oriented = !scan.normals.empty() || !scan.faces.empty();
-      registerScan(model, cleaned.scan.points, descriptors, oriented, config, &result);
-      if (result.registration != RegistrationStatus::kFailed) {
-        const auto deviation_start = Clock::now();
-        measurePart(model, cleaned.scan, descriptors, config, &result);
-        result.timings.push_back({"deviation", secondsSince(deviation_start)});
-      }
-    }
+  Stopwatch watch{&result, &progress};
+  if (watch.proceed("clean", 0.0)) {
+    runStages(model, scan, config, progress, &watch, &result);
   }
   judge(config, &result);
   result.timings.push_back({"total", secondsSince(start)});

@@ -22,6 +22,8 @@ const char* toString(StatusCode code) {
       return "registration_failed";
     case StatusCode::kNotImplemented:
       return "not_implemented";
+    case StatusCode::kCancelled:
+      return "cancelled";
   }
   return "unknown";
 }

@@ -34,6 +34,14 @@ struct FieldReader {
 std::optional<FieldReader> findField(const sensor_msgs::PointCloud2& cloud,
                                      const std::string& name,
                                      std::string* error) {
+  const auto copies =
+      std::count_if(cloud.fields.begin(), cloud.fields.end(), [&name](const PointField& field) {
+        return field.name == name;
+      });
+  if (copies > 1) {  // which one is the coordinate would be a guess
+    *error = "field '" + name + "' appears " + std::to_string(copies) + " times";
+    return std::nullopt;
+  }
   for (const auto& field : cloud.fields) {
     if (field.name != name) {
       continue;
@@ -42,7 +50,7 @@ std::optional<FieldReader> findField(const sensor_msgs::PointCloud2& cloud,
     if (field.datatype != PointField::FLOAT32 && field.datatype != PointField::FLOAT64) {
       *error = "field '" + name + "' has datatype " + std::to_string(field.datatype) +
                "; only FLOAT32 (7) and FLOAT64 (8) coordinates are supported";
-    } else if (field.offset + size > cloud.point_step) {
+    } else if (std::uint64_t{field.offset} + size > cloud.point_step) {  // no wrap-around
       *error = "field '" + name + "' at offset " + std::to_string(field.offset) +
                " does not fit in point_step " + std::to_string(cloud.point_step);
     } else {
@@ -121,6 +129,37 @@ CloudConversion cloudToScan(const sensor_msgs::PointCloud2& cloud) {
   return result;
 }
 
+sensor_msgs::PointCloud2 scanToCloud(const fi::Scan& scan, const std_msgs::Header& header) {
+  sensor_msgs::PointCloud2 cloud;
+  cloud.header = header;
+  const bool organized = scan.isOrganized();
+  cloud.width = static_cast<std::uint32_t>(organized ? scan.width : scan.points.size());
+  cloud.height = organized ? static_cast<std::uint32_t>(scan.height) : 1U;
+  const char* names[] = {"x", "y", "z"};
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    PointField field;
+    field.name = names[i];
+    field.offset = i * static_cast<std::uint32_t>(sizeof(float));
+    field.datatype = PointField::FLOAT32;
+    field.count = 1;
+    cloud.fields.push_back(field);
+  }
+  cloud.is_bigendian = false;
+  cloud.point_step = 3 * static_cast<std::uint32_t>(sizeof(float));
+  cloud.row_step = cloud.point_step * cloud.width;
+  cloud.data.resize(std::size_t{cloud.row_step} * cloud.height);
+  cloud.is_dense = true;
+  std::uint8_t* out = cloud.data.data();
+  for (const Eigen::Vector3d& p : scan.points) {
+    const float xyz[3] = {
+        static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())};
+    std::memcpy(out, xyz, sizeof(xyz));
+    out += sizeof(xyz);
+    cloud.is_dense = cloud.is_dense && p.allFinite();
+  }
+  return cloud;
+}
+
 visualization_msgs::Marker modelMarker(const fi::Model& model, const std::string& frame) {
   visualization_msgs::Marker marker;
   marker.header.frame_id = frame;
@@ -154,6 +193,14 @@ freeform_inspection::InspectionReport errorReport(const std::string& error_code,
   report.message = message;
   report.registration_status = fi::toString(fi::RegistrationStatus::kFailed);
   report.transform.transform.rotation.w = 1.0;
+  return report;
+}
+
+freeform_inspection::InspectionReport cancelledReport(const std::string& when,
+                                                      const std_msgs::Header& scan_header) {
+  freeform_inspection::InspectionReport report =
+      errorReport(kCancelledCode, "cancelled " + when + "; nothing was published");
+  report.header = scan_header;
   return report;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include <sensor_msgs/PointCloud2.h>
+#include <std_msgs/Header.h>
 #include <visualization_msgs/Marker.h>
 
 #include "freeform_inspection/model.h"
@@ -30,8 +31,14 @@ const char* statusName(std::uint8_t status);
 std::string errorCode(fi::StatusCode code);
 
 /// @brief Reads x, y, z by field name (FLOAT32 or FLOAT64), organized or not, after checking that
-/// width, height, point_step, row_step and the data size agree. Other fields are ignored.
+/// width, height, point_step, row_step and the data size agree. x, y and z must each appear once
+/// (a duplicated coordinate field is refused). Other fields are ignored.
 CloudConversion cloudToScan(const sensor_msgs::PointCloud2& cloud);
+
+/// @brief A scan as an x, y, z FLOAT32 cloud with `header`: organized (width × height, NaN kept)
+/// when the scan is, else one row; `is_dense` is false when any point is not finite. Normals and
+/// faces are not converted.
+sensor_msgs::PointCloud2 scanToCloud(const fi::Scan& scan, const std_msgs::Header& header);
 
 /// @brief The CAD mesh as a TRIANGLE_LIST marker in `frame` (published once, latched).
 visualization_msgs::Marker modelMarker(const fi::Model& model, const std::string& frame);
@@ -39,6 +46,14 @@ visualization_msgs::Marker modelMarker(const fi::Model& model, const std::string
 /// @brief A report for a request refused before the pipeline ran (no model, no scan, ...).
 freeform_inspection::InspectionReport errorReport(const std::string& error_code,
                                                   const std::string& message);
+
+/// error_code of an inspection cancelled through the action.
+inline constexpr char kCancelledCode[] = "CANCELLED";
+
+/// @brief The report of an inspection cancelled `when` (e.g. "before the inspection started"):
+/// status ERROR, error_code CANCELLED, the scan's header; nothing of that run is published.
+freeform_inspection::InspectionReport cancelledReport(const std::string& when,
+                                                      const std_msgs::Header& scan_header);
 
 /// @brief The pipeline's result as a report message. The transform is the part pose in the scan
 /// frame: parent = `scan_frame`, child = `part_frame`, value = inverse(T_cad_scan).

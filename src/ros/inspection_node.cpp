@@ -3,10 +3,12 @@
 #include "inspection_node.h"
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <utility>
 
 #include "conversions.h"
+#include "model_access.h"
 #include "result_messages.h"
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -20,8 +22,32 @@ using freeform_inspection::Inspect;
 using freeform_inspection::InspectionReport;
 using freeform_inspection::LoadModel;
 
+namespace {
+
+// Action progress at the start of each stage; fi::inspect() reports its own stages inside the
+// inspecting span.
+constexpr double kConvertingProgress = 0.02;
+constexpr double kInspectingProgress = 0.05;
+constexpr double kPublishingProgress = 0.95;
+
+// The configured pipeline with the request's tolerance band where it sets one.
+fi::PipelineConfig requestPipeline(const fi::PipelineConfig& configured,
+                                   const Inspect::Request& request) {
+  fi::PipelineConfig pipeline = configured;
+  if (std::isfinite(request.tolerance_upper) && request.tolerance_upper > 0.0) {
+    pipeline.tolerance.upper = request.tolerance_upper;
+  }
+  if (std::isfinite(request.tolerance_lower) && request.tolerance_lower < 0.0) {
+    pipeline.tolerance.lower = request.tolerance_lower;
+  }
+  return pipeline;
+}
+
+}  // namespace
+
 InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : nh_(std::move(nh)), pnh_(std::move(pnh)), diagnostics_(nh_, pnh_) {
+    // Named by the private namespace: inside a nodelet manager the process name is the manager's.
+    : nh_(std::move(nh)), pnh_(std::move(pnh)), diagnostics_(nh_, pnh_, pnh_.getNamespace()) {
   const NodeConfigResult loaded = loadNodeConfig(pnh_);
   for (const auto& warning : loaded.warnings) {
     ROS_WARN_STREAM(warning);
@@ -59,6 +85,7 @@ InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   load_model_srv_ = service_nh.advertiseService("load_model", &InspectionNode::onLoadModel, this);
   service_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &service_queue_);
   service_spinner_->start();
+  startActionServer();
   if (config_.auto_inspect) {
     auto_worker_ = std::thread(&InspectionNode::autoInspectLoop, this);
   }
@@ -74,6 +101,10 @@ InspectionNode::~InspectionNode() {
   if (auto_worker_.joinable()) {
     auto_worker_.join();
   }
+  if (action_spinner_) {
+    action_spinner_->stop();
+  }
+  action_server_.reset();  // joins its thread: a running inspection finishes first
   if (service_spinner_) {
     service_spinner_->stop();
   }
@@ -124,10 +155,12 @@ std::shared_ptr<const fi::Model> InspectionNode::model() const {
 void InspectionNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   InspectionReport last;
   std::uint64_t inspections = 0;
+  std::uint64_t cancelled = 0;
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     last = last_report_;
     inspections = inspections_;
+    cancelled = cancelled_;
   }
   std::uint64_t received = 0;
   std::uint64_t dropped = 0;
@@ -150,6 +183,7 @@ void InspectionNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   }
   status.add("model", current ? current->id() : std::string());
   status.add("inspections", inspections);
+  status.add("inspections cancelled", cancelled);
   status.add("scans received", received);
   status.add("scans dropped", dropped);
   if (inspections > 0) {
@@ -168,6 +202,11 @@ void InspectionNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
 sensor_msgs::PointCloud2ConstPtr InspectionNode::lastScan() const {
   std::lock_guard<std::mutex> lock(scan_mutex_);
   return last_scan_;
+}
+
+bool InspectionNode::stopping() const {
+  std::lock_guard<std::mutex> lock(scan_mutex_);
+  return stopping_;
 }
 
 std::string InspectionNode::installModel(const std::string& uri,
@@ -210,7 +249,20 @@ std::string InspectionNode::installModel(const std::string& uri,
 
 bool InspectionNode::onLoadModel(LoadModel::Request& request, LoadModel::Response& response) {
   const std::string id = request.model_id.empty() ? config_.model_id : request.model_id;
-  const std::string error = installModel(request.path, request.units, id, &response);
+  // Anyone on the graph may call this: only files in the configured directories, capped.
+  std::vector<std::string> dirs = config_.model_dirs;
+  if (dirs.empty() && !config_.model.empty()) {
+    dirs.push_back(std::filesystem::path(resolveModelPath(config_.model)).parent_path().string());
+  }
+  const std::string path = resolveModelPath(request.path);
+  std::string error =
+      path.empty()
+          ? "cannot resolve model URL '" + request.path + "'"
+          : checkModelAccess(
+                path, dirs, static_cast<std::uintmax_t>(config_.max_model_mb) * 1024U * 1024U);
+  if (error.empty()) {
+    error = installModel(request.path, request.units, id, &response);
+  }
   response.success = error.empty();
   response.message = error.empty() ? "loaded model '" + id + "'" : error;
   if (!error.empty()) {
@@ -219,8 +271,8 @@ bool InspectionNode::onLoadModel(LoadModel::Request& request, LoadModel::Respons
   return true;  // the outcome is in the response, never a failed call
 }
 
-InspectionReport InspectionNode::inspect(const Inspect::Request& request,
-                                         const std::shared_ptr<const fi::Model>& model) {
+std::optional<InspectionReport> InspectionNode::refusal(
+    const Inspect::Request& request, const std::shared_ptr<const fi::Model>& model) const {
   if (!model) {
     std::lock_guard<std::mutex> lock(model_mutex_);
     return errorReport("MODEL_NOT_LOADED", model_error_);
@@ -230,6 +282,15 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
         "UNKNOWN_MODEL",
         "model '" + request.model_id + "' is not loaded (loaded: '" + model->id() + "')");
   }
+  return std::nullopt;
+}
+
+InspectionReport InspectionNode::inspect(const Inspect::Request& request,
+                                         const std::shared_ptr<const fi::Model>& model,
+                                         const StageHook& stage) {
+  if (auto refused = refusal(request, model)) {
+    return *refused;
+  }
   sensor_msgs::PointCloud2ConstPtr cloud =
       request.use_last_scan ? lastScan()
                             : boost::make_shared<sensor_msgs::PointCloud2>(request.cloud);
@@ -238,6 +299,9 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
         "NO_SCAN",
         "use_last_scan is set but no cloud has arrived on '" + scan_sub_.getTopic() + "'");
   }
+  if (!stage("converting", kConvertingProgress)) {
+    return cancelledReport("before the cloud was converted", cloud->header);
+  }
   const CloudConversion converted = cloudToScan(*cloud);
   if (!converted.status.ok()) {
     InspectionReport report =
@@ -245,14 +309,23 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
     report.header = cloud->header;
     return report;
   }
-  fi::PipelineConfig pipeline = config_.pipeline;
-  if (std::isfinite(request.tolerance_upper) && request.tolerance_upper > 0.0) {
-    pipeline.tolerance.upper = request.tolerance_upper;
+  const fi::PipelineConfig pipeline = requestPipeline(config_.pipeline, request);
+  if (!stage("inspecting", kInspectingProgress)) {
+    return cancelledReport("before the inspection started", cloud->header);
   }
-  if (std::isfinite(request.tolerance_lower) && request.tolerance_lower < 0.0) {
-    pipeline.tolerance.lower = request.tolerance_lower;
+  // The core's own stages, mapped into the inspecting span; a cancel stops it between stages.
+  const auto core_stage = [&stage](const std::string& name, double fraction) {
+    return stage(name,
+                 kInspectingProgress + fraction * (kPublishingProgress - kInspectingProgress));
+  };
+  const fi::InspectionResult result = fi::inspect(*model, converted.scan, pipeline, core_stage);
+  if (result.status.code == fi::StatusCode::kCancelled) {
+    return cancelledReport("during stage 'inspecting' (" + result.status.message + ")",
+                           cloud->header);
   }
-  const fi::InspectionResult result = fi::inspect(*model, converted.scan, pipeline);
+  if (!stage("publishing", kPublishingProgress)) {
+    return cancelledReport("after stage 'inspecting', before publishing", cloud->header);
+  }
   InspectionReport report = toReport(result, cloud->header, config_.part_frame);
   report.tolerance_upper = pipeline.tolerance.upper;
   report.tolerance_lower = pipeline.tolerance.lower;
@@ -271,22 +344,34 @@ void InspectionNode::publish(const fi::InspectionResult& result,
   }
   std_msgs::Header part_header = report.header;
   part_header.frame_id = config_.part_frame;
+  // Published as shared pointers: subscribers in the same nodelet manager get them uncopied.
   if (deviation_pub_.getNumSubscribers() > 0) {
-    deviation_pub_.publish(deviationCloud(result, tolerance, part_header, 0));
+    deviation_pub_.publish(boost::make_shared<const sensor_msgs::PointCloud2>(
+        deviationCloud(result, tolerance, part_header, 0)));
   }
   if (deviation_viz_pub_.getNumSubscribers() > 0) {
-    deviation_viz_pub_.publish(deviationCloud(
-        result, tolerance, part_header, static_cast<std::size_t>(config_.viz_max_points)));
+    deviation_viz_pub_.publish(boost::make_shared<const sensor_msgs::PointCloud2>(deviationCloud(
+        result, tolerance, part_header, static_cast<std::size_t>(config_.viz_max_points))));
   }
   defects_pub_.publish(defectMarkers(result, part_header));
 }
 
 InspectionReport InspectionNode::inspectAndPublish(const Inspect::Request& request) {
-  std::lock_guard<std::mutex> serial(inspect_mutex_);
+  std::lock_guard<std::timed_mutex> serial(inspect_mutex_);
+  return inspectAndPublishLocked(request, [](const std::string&, double) { return true; });
+}
+
+InspectionReport InspectionNode::inspectAndPublishLocked(const Inspect::Request& request,
+                                                         const StageHook& stage) {
   const auto current = model();
-  InspectionReport report = inspect(request, current);
+  InspectionReport report = inspect(request, current, stage);
   report.part_id = request.part_id;
   report.model_id = current ? current->id() : "";
+  if (report.error_code == kCancelledCode) {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++cancelled_;
+    return report;
+  }
   if (report.status == InspectionReport::ERROR) {
     ROS_WARN_STREAM("inspection " << report.error_code << ": " << report.message);
   }

@@ -4,12 +4,15 @@
 
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
 #include "parameters.h"
+#include <actionlib/server/simple_action_server.h>
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
@@ -18,6 +21,7 @@
 
 #include "freeform_inspection/model.h"
 #include <freeform_inspection/Inspect.h>
+#include <freeform_inspection/InspectAction.h>
 #include <freeform_inspection/LoadModel.h>
 
 namespace freeform_inspection_ros {
@@ -26,9 +30,11 @@ namespace freeform_inspection_ros {
 ///
 /// Subscribes `scan`; publishes the part pose on tf, `~deviation`, `~deviation_viz`,
 /// `~defects`, `~model_marker` and `~result` (latched), and diagnostics; serves `~inspect` and
-/// `~load_model` on their own callback queue and thread, so a long inspection does not block
-/// incoming scans. With `~auto_inspect` a worker thread inspects the latest scan; scans that
-/// arrive while it is busy replace the waiting one and are counted as dropped.
+/// `~load_model` on their own callback queue and thread, and the `~inspect_action` action on
+/// another, so a long inspection blocks neither incoming scans nor a cancel. With
+/// `~auto_inspect` a worker thread inspects the latest scan; scans that arrive while it is busy
+/// replace the waiting one and are counted as dropped. One inspection runs at a time, whoever
+/// asked. The same class runs as the standalone node and as the nodelet.
 class InspectionNode {
  public:
   /// @param pnh private node handle ("~"): parameters, outputs and services live under it.
@@ -41,11 +47,23 @@ class InspectionNode {
   bool ok() const { return ok_; }
 
  private:
+  using InspectServer = actionlib::SimpleActionServer<freeform_inspection::InspectAction>;
+  /// Told when a node-level stage starts ("converting", "inspecting", "publishing") with the
+  /// progress so far; returns false to cancel the inspection before that stage.
+  using StageHook = std::function<bool(const std::string& stage, double progress)>;
+
   void onScan(const sensor_msgs::PointCloud2ConstPtr& cloud);
   bool onInspect(freeform_inspection::Inspect::Request& request,
                  freeform_inspection::Inspect::Response& response);
   bool onLoadModel(freeform_inspection::LoadModel::Request& request,
                    freeform_inspection::LoadModel::Response& response);
+  void startActionServer();
+  void onInspectAction(const freeform_inspection::InspectGoalConstPtr& goal);
+  /// Waits for the running inspection to end; false when a cancel (or shutdown) came first.
+  bool waitForTurn(std::unique_lock<std::timed_mutex>* turn);
+  /// Action feedback for `stage`; false when the client asked to cancel.
+  bool actionStage(const std::string& stage, double progress);
+  void finishAction(const freeform_inspection::InspectionReport& report);
   void autoInspectLoop();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
@@ -57,13 +75,23 @@ class InspectionNode {
   /// Runs one inspection, publishes its outputs and returns the report.
   freeform_inspection::InspectionReport inspectAndPublish(
       const freeform_inspection::Inspect::Request& request);
+  /// inspectAndPublish() for a caller that holds `inspect_mutex_`; a cancelled run (report
+  /// error_code CANCELLED) publishes nothing.
+  freeform_inspection::InspectionReport inspectAndPublishLocked(
+      const freeform_inspection::Inspect::Request& request, const StageHook& stage);
   freeform_inspection::InspectionReport inspect(
       const freeform_inspection::Inspect::Request& request,
-      const std::shared_ptr<const freeform_inspection::Model>& model);
+      const std::shared_ptr<const freeform_inspection::Model>& model,
+      const StageHook& stage);
+  /// The refusal of a request that cannot be inspected (no or another model), or nothing.
+  std::optional<freeform_inspection::InspectionReport> refusal(
+      const freeform_inspection::Inspect::Request& request,
+      const std::shared_ptr<const freeform_inspection::Model>& model) const;
   void publish(const freeform_inspection::InspectionResult& result,
                const freeform_inspection::ToleranceConfig& tolerance,
                const freeform_inspection::InspectionReport& report);
   sensor_msgs::PointCloud2ConstPtr lastScan() const;
+  bool stopping() const;
   std::shared_ptr<const freeform_inspection::Model> model() const;
 
   ros::NodeHandle nh_;
@@ -75,7 +103,8 @@ class InspectionNode {
   std::shared_ptr<const freeform_inspection::Model> model_;
   std::string model_error_;  // why no model is loaded, for the Inspect answer
 
-  std::mutex inspect_mutex_;  // one inspection at a time (service, action or auto)
+  // One inspection at a time (service, action or auto); timed so a queued goal can be cancelled.
+  std::timed_mutex inspect_mutex_;
 
   mutable std::mutex scan_mutex_;
   std::condition_variable scan_arrived_;
@@ -87,6 +116,7 @@ class InspectionNode {
 
   mutable std::mutex stats_mutex_;
   std::uint64_t inspections_ = 0;
+  std::uint64_t cancelled_ = 0;
   freeform_inspection::InspectionReport last_report_;
 
   ros::Subscriber scan_sub_;
@@ -102,6 +132,10 @@ class InspectionNode {
   ros::ServiceServer inspect_srv_;
   ros::ServiceServer load_model_srv_;
   std::unique_ptr<ros::AsyncSpinner> service_spinner_;
+  // The action has its own queue so goals and cancels arrive while a service call runs.
+  ros::CallbackQueue action_queue_;
+  std::unique_ptr<InspectServer> action_server_;
+  std::unique_ptr<ros::AsyncSpinner> action_spinner_;
   std::thread auto_worker_;
 };
 

@@ -22,7 +22,9 @@ const std::vector<std::string> kNodeKeys = {"model",
                                             "part_frame",
                                             "publish_tf",
                                             "auto_inspect",
-                                            "viz_max_points"};
+                                            "viz_max_points",
+                                            "model_dirs",
+                                            "max_model_mb"};
 
 struct ReadParam {
   const ros::NodeHandle& pnh;
@@ -68,6 +70,8 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   pnh.param("publish_tf", config.publish_tf, config.publish_tf);
   pnh.param("auto_inspect", config.auto_inspect, config.auto_inspect);
   pnh.param("viz_max_points", config.viz_max_points, config.viz_max_points);
+  pnh.param("model_dirs", config.model_dirs, config.model_dirs);
+  pnh.param("max_model_mb", config.max_model_mb, config.max_model_mb);
   std::set<std::string> known(kNodeKeys.begin(), kNodeKeys.end());
   for (const auto& field : fi::configFields(config.pipeline)) {
     std::visit(ReadParam{pnh, field.key, &result.errors}, field.target);
@@ -76,6 +80,10 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   if (!config.model.empty() && !fi::unitScale(config.model_units)) {
     result.errors.push_back("~model_units must be 'm', 'mm' or 'in' (got '" + config.model_units +
                             "'): CAD units are never guessed");
+  }
+  if (config.max_model_mb < 1) {
+    result.errors.push_back("~max_model_mb must be at least 1 (got " +
+                            std::to_string(config.max_model_mb) + ")");
   }
   if (config.viz_max_points < 1) {
     result.errors.push_back("~viz_max_points must be at least 1 (got " +

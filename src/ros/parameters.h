@@ -20,6 +20,9 @@ struct NodeConfig {
   bool publish_tf = true;            ///< broadcast the part pose when the registration is ok
   bool auto_inspect = false;         ///< inspect every scan arriving on `scan` (latest wins)
   int viz_max_points = 20000;        ///< ~deviation_viz carries at most this many points
+  /// Directories ~load_model may read from; empty: the start-up model's directory only.
+  std::vector<std::string> model_dirs;
+  int max_model_mb = 500;                        ///< ~load_model refuses larger CAD files [MiB]
   freeform_inspection::PipelineConfig pipeline;  ///< ~input/*, ~tolerance/*
 };
 

@@ -24,7 +24,8 @@ std::string apply(const std::string& flag, const std::string& value, CliOptions*
                                                      {"--scan", &options->scan_path},
                                                      {"--config", &options->config_path},
                                                      {"--report", &options->report_path},
-                                                     {"--deviation", &options->deviation_path}};
+                                                     {"--deviation", &options->deviation_path},
+                                                     {"--html", &options->html_path}};
   if (const auto path = paths.find(flag); path != paths.end()) {
     *path->second = value;
     return "";
@@ -77,8 +78,11 @@ std::string cliUsage() {
   return "usage: freeform_inspect --cad CAD.{stl,ply,obj} --scan SCAN.{ply,pcd,stl,obj}\n"
          "                        [--cad-scale S] [--scan-scale S] [--tolerance T]\n"
          "                        [--config FILE.yaml] [--report OUT.json] [--deviation OUT.ply]\n"
+         "                        [--html OUT.html]\n"
          "\n"
          "Registers the scan to the CAD model from any pose and prints one JSON object.\n"
+         "--deviation writes the coloured deviation map (PLY, CAD frame) when the scan was\n"
+         "registered; --html writes a self-contained report for people (docs/reports.md).\n"
          "Lengths are metres after scaling: --cad-scale 0.001 reads a CAD file in millimetres,\n"
          "--tolerance 0.0002 is a band of +-0.2 mm.\n"
          "Exit codes: 0 it ran (whatever the verdict), 2 bad input or usage (one line on "

@@ -18,6 +18,7 @@ struct CliOptions {
   std::string config_path;          ///< --config FILE.yaml
   std::string report_path;          ///< --report OUT.json
   std::string deviation_path;       ///< --deviation OUT.ply
+  std::string html_path;            ///< --html OUT.html
   bool help = false;                ///< --help
 };
 

@@ -3,6 +3,7 @@
 //
 // freeform_inspect: the offline inspection job on files, the same pipeline as the node.
 #include <chrono>
+#include <ctime>
 #include <exception>
 #include <fstream>
 #include <iostream>
@@ -10,7 +11,10 @@
 #include <vector>
 
 #include "cli_options.h"
+#include "deviation_ply.h"
+#include "report_html.h"
 #include "report_json.h"
+#include "report_provenance.h"
 
 #include "freeform_inspection/config_yaml.h"
 #include "freeform_inspection/io.h"
@@ -63,7 +67,51 @@ bool emit(const fi::CliOptions& options, const nlohmann::ordered_json& report) {
   return static_cast<bool>(file);
 }
 
+// The deviation PLY needs a deviation map, which only a registered scan has; the JSON says
+// why the file is missing instead of leaving an empty PLY behind.
+void noteSkippedOutputs(const fi::CliOptions& options, fi::InspectionResult* result) {
+  if (!options.deviation_path.empty() && result->deviation_map.size() == 0) {
+    result->warnings.push_back("deviation file '" + options.deviation_path +
+                               "' not written: no deviation map (the scan was not registered)");
+  }
+}
+
+fi::ReportProvenance provenance(const fi::CliOptions& options,
+                                const fi::Model& model,
+                                std::time_t started) {
+  fi::ReportProvenance p;
+  p.cad_file = options.cad_path;
+  p.scan_file = options.scan_path;
+  p.model_id = model.id();
+  p.model_key = model.descriptorKey();
+  p.scan_hash = fi::fileHash(options.scan_path);
+  p.created = fi::utcTimestamp(started);
+  return p;
+}
+
+// Writes --deviation (when there is a map) and --html (always: a failed inspection is on record
+// too); returns the first failure.
+fi::Status writeOutputs(const fi::CliOptions& options,
+                        const fi::InspectionResult& result,
+                        const fi::PipelineConfig& config,
+                        const fi::Model& model,
+                        std::time_t started) {
+  if (!options.deviation_path.empty() && result.deviation_map.size() > 0) {
+    fi::Status written = fi::saveDeviationPly(
+        options.deviation_path, result.deviation_map, result.scan_faces, config.tolerance);
+    if (!written.ok()) {
+      return written;
+    }
+  }
+  if (!options.html_path.empty()) {
+    return fi::saveHtmlReport(
+        options.html_path, result, config, provenance(options, model, started));
+  }
+  return fi::Status::success();
+}
+
 int run(const fi::CliOptions& options) {
+  const std::time_t started = std::time(nullptr);
   const auto start = std::chrono::steady_clock::now();
   const fi::ConfigLoadResult config = configure(options);
   if (!config.status.ok()) {
@@ -83,14 +131,15 @@ int run(const fi::CliOptions& options) {
   result.counts.non_finite += scan.non_finite_removed;
   result.warnings.insert(result.warnings.begin(), model.warnings.begin(), model.warnings.end());
   result.warnings.insert(result.warnings.end(), scan.warnings.begin(), scan.warnings.end());
-  if (!options.deviation_path.empty() && result.verdict == fi::Verdict::kNotEvaluated) {
-    result.warnings.push_back("deviation file '" + options.deviation_path +
-                              "' not written: the scan was not evaluated");
-  }
+  noteSkippedOutputs(options, &result);
   result.timings.insert(result.timings.begin(), {"load", load_seconds});
   result.timings.back().seconds = secondsSince(start);  // "total" covers loading too
   if (!emit(options, fi::toJson(result))) {
     return refuse("cannot write report '" + options.report_path + "'");
+  }
+  const fi::Status written = writeOutputs(options, result, config.config, *model.model, started);
+  if (!written.ok()) {
+    return refuse(written.message);
   }
   if (isInputProblem(result.status.code)) {
     return refuse(result.status.message);

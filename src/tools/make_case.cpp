@@ -16,6 +16,8 @@
 #include <iostream>
 #include <string>
 
+#include "number_text.h"
+
 #include "freeform_inspection/io.h"
 #include "freeform_inspection/mesh_query.h"
 #include "freeform_inspection/synthetic_scan.h"
@@ -37,29 +39,6 @@ struct Options {
   SyntheticScanConfig config;
   bool help = false;
 };
-
-// Whole-string conversions: "12abc" is an error, not 12.
-bool parseDouble(const std::string& text, double& value) {
-  try {
-    std::size_t used = 0;
-    value = std::stod(text, &used);
-    return used == text.size();
-  } catch (...) {
-    return false;
-  }
-}
-
-bool parseUnsigned(const std::string& text, std::uint64_t& value) {
-  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
-    return false;
-  }
-  try {
-    value = std::stoull(text);
-    return true;
-  } catch (...) {
-    return false;
-  }
-}
 
 // Returns an empty string on success, else the reason.
 std::string parseArguments(int argc, char** argv, Options& options) {

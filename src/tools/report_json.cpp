@@ -20,6 +20,15 @@ nlohmann::ordered_json numberOrNull(double value) {
   return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
 }
 
+nlohmann::ordered_json vectorJson(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+// Bin edges [m] (one more than the counts) and points per bin; empty lists when not measured.
+nlohmann::ordered_json histogramJson(const DeviationStatistics& d) {
+  return {{"edges", d.histogram_edges}, {"counts", d.histogram_counts}};
+}
+
 nlohmann::ordered_json deviationJson(const DeviationStatistics& d) {
   if (d.evaluated == 0) {
     // Nothing was measured: null, not zeros that read like a perfect part.
@@ -33,11 +42,14 @@ nlohmann::ordered_json deviationJson(const DeviationStatistics& d) {
                             "p50",
                             "p95",
                             "in_tolerance_fraction",
-                            "coverage"}) {
+                            "coverage",
+                            "shape_mean",
+                            "shape_p95"}) {
       none[key] = nullptr;
     }
     none["evaluated"] = 0;
     none["unmatched"] = d.unmatched;
+    none["histogram"] = histogramJson(d);
     return none;
   }
   return {{"mean", d.mean},
@@ -51,16 +63,23 @@ nlohmann::ordered_json deviationJson(const DeviationStatistics& d) {
           {"in_tolerance_fraction", d.in_tolerance_fraction},
           {"coverage", d.coverage},
           {"evaluated", d.evaluated},
-          {"unmatched", d.unmatched}};
+          {"unmatched", d.unmatched},
+          {"shape_mean", numberOrNull(d.shape_mean)},
+          {"shape_p95", numberOrNull(d.shape_p95)},
+          {"histogram", histogramJson(d)}};
 }
 
 nlohmann::ordered_json defectsJson(const std::vector<DefectRegion>& defects) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const auto& d : defects) {
-    list.push_back({{"centroid", {d.centroid.x(), d.centroid.y(), d.centroid.z()}},
+    list.push_back({{"centroid", vectorJson(d.centroid)},
                     {"points", d.points},
                     {"area", d.area},
-                    {"peak", d.peak}});
+                    {"peak", d.peak},
+                    {"sign", d.sign},
+                    {"mean", d.mean},
+                    {"bbox_min", vectorJson(d.bbox_min)},
+                    {"bbox_max", vectorJson(d.bbox_max)}});
   }
   return list;
 }
@@ -94,6 +113,7 @@ nlohmann::ordered_json toJson(const InspectionResult& result) {
   json["inlier_distance"] = numberOrNull(result.inlier_distance);
   json["scan_noise"] = numberOrNull(result.scan_noise);
   json["verdict"] = toString(result.verdict);
+  json["verdict_reason"] = result.verdict_reason;
   json["deviation"] = deviationJson(result.deviation);
   json["defects"] = defectsJson(result.defects);
   json["counts"] = countsJson(result.counts);

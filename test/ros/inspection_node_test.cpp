@@ -2,21 +2,22 @@
 // Copyright 2026 The freeform_inspection authors
 //
 // rostest client: the node starts with the shipped blade, publishes the CAD marker, answers
-// Inspect with a status for every kind of request and keeps serving after bad ones.
+// Inspect with a status for every kind of request and keeps serving after bad ones. The nodelet
+// test runs the same cases against the nodelet in a namespace.
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include "analytic_clouds.h"
+#include "rostest_helpers.h"
 #include <gtest/gtest.h>
+#include <ros/master.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <tf2_eigen/tf2_eigen.h>
-#include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/Marker.h>
 
 #include "freeform_inspection/io.h"
@@ -30,57 +31,21 @@ namespace {
 using freeform_inspection::Inspect;
 using freeform_inspection::InspectionReport;
 using freeform_inspection::LoadModel;
-
-const ros::Duration kWait(30.0);  // generous: the node loads the model before advertising
-const std::string kNode = "/freeform_inspection";
-tf2_ros::Buffer* tf_buffer = nullptr;  // filled by a listener started in main()
-
-std::string param(const std::string& name) {
-  std::string value;
-  EXPECT_TRUE(ros::param::get("~" + name, value)) << "missing test parameter ~" << name;
-  return value;
-}
-
-sensor_msgs::PointCloud2 toCloud(const freeform_inspection::Points& points,
-                                 const std::string& frame) {
-  sensor_msgs::PointCloud2 cloud;
-  cloud.header.frame_id = frame;
-  cloud.header.stamp = ros::Time(1234.5);
-  sensor_msgs::PointCloud2Modifier modifier(cloud);
-  modifier.setPointCloud2FieldsByString(1, "xyz");
-  modifier.resize(points.size());
-  sensor_msgs::PointCloud2Iterator<float> x(cloud, "x");
-  for (const auto& p : points) {
-    x[0] = static_cast<float>(p.x());
-    x[1] = static_cast<float>(p.y());
-    x[2] = static_cast<float>(p.z());
-    ++x;
-  }
-  return cloud;
-}
+using namespace freeform_inspection_rostest;  // NOLINT(google-build-using-namespace): test helpers
 
 Inspect::Response callInspect(Inspect::Request request) {
   Inspect srv;
   srv.request = std::move(request);
-  EXPECT_TRUE(ros::service::waitForService(kNode + "/inspect", kWait));
-  EXPECT_TRUE(ros::service::call(kNode + "/inspect", srv)) << "the call itself must never fail";
+  EXPECT_TRUE(ros::service::waitForService(nodeName() + "/inspect", kWait));
+  EXPECT_TRUE(ros::service::call(nodeName() + "/inspect", srv))
+      << "the call itself must never fail";
   return srv.response;
-}
-
-Inspect::Request cloudRequest(const sensor_msgs::PointCloud2& cloud) {
-  Inspect::Request request;
-  request.use_last_scan = false;
-  request.cloud = cloud;
-  request.part_id = "sn-0001";
-  request.tolerance_upper = std::numeric_limits<double>::quiet_NaN();
-  request.tolerance_lower = std::numeric_limits<double>::quiet_NaN();
-  return request;
 }
 
 TEST(InspectionNode, PublishesLatchedCadMarkerInMetresInPartFrame) {
   const auto marker =
-      ros::topic::waitForMessage<visualization_msgs::Marker>(kNode + "/model_marker", kWait);
-  ASSERT_TRUE(marker) << "no latched marker on " << kNode << "/model_marker";
+      ros::topic::waitForMessage<visualization_msgs::Marker>(nodeName() + "/model_marker", kWait);
+  ASSERT_TRUE(marker) << "no latched marker on " << nodeName() << "/model_marker";
   EXPECT_EQ(marker->header.frame_id, "part");
   EXPECT_EQ(marker->type, visualization_msgs::Marker::TRIANGLE_LIST);
   const auto model = freeform_inspection::loadMesh(param("model_path"), 0.001);
@@ -92,23 +57,6 @@ TEST(InspectionNode, PublishesLatchedCadMarkerInMetresInPartFrame) {
   }
   EXPECT_GT(max_abs, 0.05) << "the blade is ~0.1 m: marker not in metres?";
   EXPECT_LT(max_abs, 0.5) << "the blade is ~0.1 m: mm not converted to metres?";
-}
-
-// T_cad_scan of the sample scan, as generate_blade wrote it (4 × 4, row-major).
-Eigen::Isometry3d sampleTruth() {
-  std::ifstream file(param("sample_truth"));
-  Eigen::Matrix4d m;
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      file >> m(r, c);
-    }
-  }
-  EXPECT_TRUE(file) << "cannot read " << param("sample_truth");
-  return Eigen::Isometry3d(m);
-}
-
-double angleDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() * 180.0 / M_PI;
 }
 
 // Latest message on `topic` published after `call` ran (subscribed before it).
@@ -142,7 +90,7 @@ TEST(InspectionNode, RegistersTheSampleScanJudgesItAndPublishesPoseAndDeviation)
   const auto scan = freeform_inspection::loadScan(param("sample_scan"), 1.0);
   ASSERT_TRUE(scan.status.ok()) << scan.status.message;
   Inspect::Response response;
-  const auto cloud = receiveDuring<sensor_msgs::PointCloud2>(kNode + "/deviation", [&] {
+  const auto cloud = receiveDuring<sensor_msgs::PointCloud2>(nodeName() + "/deviation", [&] {
     response = callInspect(cloudRequest(toCloud(scan.scan.points, "scanner")));
   });
   // The sample is the CAD sampled with σ = 0.02 mm noise: inside the default ±0.1 mm band.
@@ -157,25 +105,16 @@ TEST(InspectionNode, RegistersTheSampleScanJudgesItAndPublishesPoseAndDeviation)
   EXPECT_EQ(deviation.histogram_edges.size(), deviation.histogram_counts.size() + 1);
   EXPECT_TRUE(response.report.defects.empty());
   // The report carries the part's pose in the scan frame: inverse(T_cad_scan).
-  const Eigen::Isometry3d part_in_scan = tf2::transformToEigen(response.report.transform);
-  const Eigen::Isometry3d truth = sampleTruth().inverse();
-  EXPECT_LT(angleDeg(part_in_scan, truth), 0.5);
-  EXPECT_LT((part_in_scan.translation() - truth.translation()).norm(), 0.0005);
+  expectSamplePose(tf2::transformToEigen(response.report.transform), "report.transform");
   EXPECT_EQ(response.report.part_id, "sn-0001");
   EXPECT_EQ(response.report.counts.scan_points, scan.scan.points.size());
   EXPECT_EQ(response.report.counts.scan_faces, 0u) << "an unorganized cloud has no faces";
   EXPECT_EQ(response.report.header.frame_id, "scanner");
   EXPECT_EQ(response.report.transform.child_frame_id, "part");
   // The same pose on tf, at the scan's stamp.
-  ASSERT_NE(tf_buffer, nullptr);
-  std::string error;
-  ASSERT_TRUE(
-      tf_buffer->canTransform("scanner", "part", ros::Time(1234.5), ros::Duration(5.0), &error))
-      << error;
-  const Eigen::Isometry3d on_tf =
-      tf2::transformToEigen(tf_buffer->lookupTransform("scanner", "part", ros::Time(1234.5)));
-  EXPECT_LT(angleDeg(on_tf, truth), 0.5);
-  EXPECT_LT((on_tf.translation() - truth.translation()).norm(), 0.0005);
+  const auto on_tf = partOnTf(ros::Time(1234.5));
+  ASSERT_TRUE(on_tf) << "no scanner → part transform on tf at the scan's stamp";
+  expectSamplePose(*on_tf, "tf scanner → part");
   // The deviation cloud: every scan point, in the part frame, with its named fields.
   ASSERT_TRUE(cloud) << "no cloud on ~deviation";
   EXPECT_EQ(cloud->header.frame_id, "part");
@@ -198,7 +137,7 @@ TEST(InspectionNode, RegistersTheSampleScanJudgesItAndPublishesPoseAndDeviation)
   }
   EXPECT_LT(worst, 0.0005);
   const auto result =
-      ros::topic::waitForMessage<InspectionReport>(kNode + "/result", ros::Duration(5.0));
+      ros::topic::waitForMessage<InspectionReport>(nodeName() + "/result", ros::Duration(5.0));
   ASSERT_TRUE(result) << "no latched report on ~result";
   EXPECT_EQ(result->part_id, "sn-0001");
 }
@@ -311,41 +250,63 @@ TEST(InspectionNode, OrganizedCloudWithNanPixelsIsReadOnItsGrid) {
 }
 
 TEST(InspectionNode, LoadModelRefusesBadPathsAndUnitsAndKeepsTheModel) {
-  ASSERT_TRUE(ros::service::waitForService(kNode + "/load_model", kWait));
+  ASSERT_TRUE(ros::service::waitForService(nodeName() + "/load_model", kWait));
   LoadModel missing;
   missing.request.path = "/nonexistent/part.stl";
   missing.request.units = "mm";
-  ASSERT_TRUE(ros::service::call(kNode + "/load_model", missing));
+  ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", missing));
   EXPECT_FALSE(missing.response.success);
   EXPECT_NE(missing.response.message.find("/nonexistent/part.stl"), std::string::npos)
       << missing.response.message;
 
+  // Outside the model directories (here: the start-up model's), whatever the path says.
+  LoadModel escape;
+  escape.request.path = "package://freeform_inspection/data/blade/../../package.xml";
+  escape.request.units = "mm";
+  ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", escape));
+  EXPECT_FALSE(escape.response.success);
+  EXPECT_NE(escape.response.message.find("outside the model directories"), std::string::npos)
+      << escape.response.message;
+
   LoadModel bad_units;
   bad_units.request.path = param("model_path");
   bad_units.request.units = "furlong";
-  ASSERT_TRUE(ros::service::call(kNode + "/load_model", bad_units));
+  ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", bad_units));
   EXPECT_FALSE(bad_units.response.success);
   EXPECT_NE(bad_units.response.message.find("furlong"), std::string::npos);
 
   LoadModel good;
   good.request.path = "package://freeform_inspection/data/blade/blade_fine.stl";
   good.request.units = "mm";
-  ASSERT_TRUE(ros::service::call(kNode + "/load_model", good));
+  ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", good));
   EXPECT_TRUE(good.response.success) << good.response.message;
   EXPECT_GT(good.response.diagonal, 0.05);
   EXPECT_LT(good.response.diagonal, 0.5);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "inspection_node_test");
-  ros::NodeHandle nh;
-  ros::AsyncSpinner spinner(2);  // subscriptions and tf arrive while a test waits
-  spinner.start();
-  tf2_ros::Buffer buffer;
-  tf2_ros::TransformListener listener(buffer);
-  tf_buffer = &buffer;
-  return RUN_ALL_TESTS();
+// Provider node of `service` according to the master, "" if none.
+std::string serviceProvider(const std::string& service) {
+  XmlRpc::XmlRpcValue args;
+  XmlRpc::XmlRpcValue result;
+  XmlRpc::XmlRpcValue payload;
+  args[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", args, result, payload, true)) {
+    return "";
+  }
+  XmlRpc::XmlRpcValue& services = payload[2];  // [publishers, subscribers, services]
+  for (int i = 0; i < services.size(); ++i) {
+    if (static_cast<std::string>(services[i][0]) == service && services[i][1].size() > 0) {
+      return static_cast<std::string>(services[i][1][0]);
+    }
+  }
+  return "";
 }
+
+// Only in the nodelet test: the master names the manager as the services' provider, so the class
+// really runs inside the manager (where clouds from other nodelets arrive uncopied).
+TEST(InspectionNodelet, ServesFromInsideTheManager) {
+  ASSERT_TRUE(ros::service::waitForService(nodeName() + "/inspect", kWait));
+  EXPECT_EQ(serviceProvider(nodeName() + "/inspect"), param("manager"));
+}
+
+}  // namespace

@@ -3,16 +3,20 @@
 //
 // The CLI contract of design.md §5: JSON on stdout, exit 0 when it ran, exit 2 with one line on
 // stderr for bad input or usage.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "report_test_util.h"
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
+
+#include "freeform_inspection/io.h"
 
 #ifndef FREEFORM_CLI_PATH
 #error "FREEFORM_CLI_PATH must name the freeform_inspect executable"
@@ -57,6 +61,7 @@ CliRun runCli(const std::string& args) {
 }
 
 const std::string kBlade = std::string(FREEFORM_DATA_DIR) + "/blade/blade.stl";
+const std::string kBladeFine = std::string(FREEFORM_DATA_DIR) + "/blade/blade_fine.stl";
 const std::string kScan = std::string(FREEFORM_DATA_DIR) + "/blade/blade_scan.ply";
 const std::string kTruth = std::string(FREEFORM_DATA_DIR) + "/blade/blade_scan_T_cad_scan.txt";
 
@@ -97,7 +102,8 @@ TEST(Cli, MissingCadExitsTwoNamingTheFile) {
 
 TEST(Cli, SampleRunPrintsTheJsonContractAndWritesTheReport) {
   const std::string report = temp("report.json");
-  const CliRun run = runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan +
+  // The fine tessellation: the sample was sampled from it (σ = 0.02 mm), so the part is good.
+  const CliRun run = runCli("--cad " + kBladeFine + " --cad-scale 0.001 --scan " + kScan +
                             " --tolerance 0.0002 --report " + report);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
@@ -115,7 +121,7 @@ TEST(Cli, SampleRunPrintsTheJsonContractAndWritesTheReport) {
   }
   EXPECT_EQ(json["status"], "ok") << json["message"];
   EXPECT_EQ(json["error_code"], "ok");
-  EXPECT_EQ(json["verdict"], "NOT_EVALUATED");  // deviation and verdict land with issue 9
+  EXPECT_EQ(json["verdict"], "PASS") << json["verdict_reason"];
   // The pose against the truth written next to the sample scan (generate_blade).
   std::ifstream truth_file(kTruth);
   Eigen::Matrix4d truth;
@@ -143,8 +149,92 @@ TEST(Cli, SampleRunPrintsTheJsonContractAndWritesTheReport) {
   EXPECT_GT(json["counts"]["cad_vertices"].get<int>(), 5000);
   EXPECT_EQ(json["transform_cad_from_scan"].size(), 4u);
   EXPECT_TRUE(json["timings_s"].contains("total"));
-  EXPECT_TRUE(json["deviation"]["rms"].is_null()) << "nothing measured must not read as zero";
+  EXPECT_NEAR(json["deviation"]["rms"].get<double>(), 2e-5, 0.2 * 2e-5);
+  EXPECT_NEAR(json["deviation"]["mean"].get<double>(), 0.0, 5e-6);
+  EXPECT_GT(json["deviation"]["coverage"].get<double>(), 0.95);
+  EXPECT_TRUE(json["defects"].empty());
   EXPECT_EQ(nlohmann::json::parse(slurp(report)), json) << "--report must hold the same JSON";
+}
+
+TEST(Cli, CoarseCadShowsItsChordalErrorAsExcessMaterial) {
+  // The sample was sampled from the fine tessellation; the coarse STL's flat facets cut inside
+  // the curved leading edge by up to ~0.6 mm, so the scan stands out of it there: FAIL, bumps.
+  const CliRun run =
+      runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan + " --tolerance 0.0002");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["status"], "ok") << json["message"];
+  EXPECT_EQ(json["verdict"], "FAIL") << json["verdict_reason"];
+  ASSERT_FALSE(json["defects"].empty());
+  const auto& largest = json["defects"][0];
+  EXPECT_EQ(largest["sign"].get<int>(), 1);
+  EXPECT_GT(largest["peak"].get<double>(), 0.0003);
+  EXPECT_LT(largest["peak"].get<double>(), 0.001);
+  EXPECT_NE(json["verdict_reason"].get<std::string>().find("bump"), std::string::npos);
+}
+
+std::string slurpBinary(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << file.rdbuf();
+  return bytes.str();
+}
+
+// --deviation and --html on the registered sample: both files parse, and they agree with the JSON.
+TEST(Cli, SampleRunWritesTheDeviationPlyAndTheHtmlReport) {
+  namespace rt = freeform_inspection::report_test;
+  const std::string ply = temp("deviation.ply");
+  const std::string html_path = temp("report.html");
+  std::remove(ply.c_str());
+  std::remove(html_path.c_str());
+  const CliRun run = runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan +
+                            " --tolerance 0.0002 --deviation " + ply + " --html " + html_path);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  ASSERT_EQ(json["status"], "ok") << json["message"];
+  EXPECT_TRUE(json.contains("verdict_reason"));
+  const auto& deviation = json["deviation"];
+  EXPECT_EQ(deviation["histogram"]["edges"].size(), deviation["histogram"]["counts"].size() + 1);
+
+  const freeform_inspection::ScanLoadResult cloud = freeform_inspection::loadScan(ply, 1.0);
+  ASSERT_TRUE(cloud.status.ok()) << cloud.status.message;
+  EXPECT_EQ(cloud.scan.points.size(), json["counts"]["scan_points"].get<std::size_t>());
+  const std::vector<rt::DeviationVertex> vertices = rt::readDeviationVertices(slurpBinary(ply));
+  ASSERT_EQ(vertices.size(), cloud.scan.points.size()) << "documented vertex layout";
+  std::size_t in_tolerance = 0;
+  std::size_t evaluated = 0;
+  for (const rt::DeviationVertex& v : vertices) {
+    in_tolerance += static_cast<std::size_t>(v.in_tolerance);
+    evaluated += std::isnan(v.deviation) ? 0 : 1;
+  }
+  EXPECT_EQ(evaluated, deviation["evaluated"].get<std::size_t>());
+  EXPECT_NEAR(static_cast<double>(in_tolerance) / static_cast<double>(evaluated),
+              deviation["in_tolerance_fraction"].get<double>(),
+              1e-3);
+
+  const std::string html = slurp(html_path);
+  EXPECT_NE(html.find(">" + json["verdict"].get<std::string>() + "<"), std::string::npos);
+  EXPECT_NE(html.find(kScan), std::string::npos);
+  EXPECT_NE(html.find("<svg class=\"histogram\""), std::string::npos);
+  const std::vector<std::string> pngs = rt::dataUris(html, "image/png");
+  ASSERT_EQ(pngs.size(), 3u);
+  for (const std::string& bytes : pngs) {
+    const rt::PngInfo png = rt::readPng(bytes);
+    EXPECT_TRUE(png.error.empty()) << png.error;
+    EXPECT_GT(png.width, 100);
+    EXPECT_GT(png.height, 100);
+  }
+}
+
+TEST(Cli, UnwritableOutputFileExitsTwoNamingIt) {
+  for (const std::string flag : {"--html", "--deviation"}) {
+    const std::string path = "/nonexistent_dir_ffi/out.file";
+    const CliRun run =
+        runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan + " " + flag + " " + path);
+    EXPECT_EQ(run.exit_code, 2) << flag;
+    EXPECT_EQ(lineCount(run.err), 1) << flag << ": " << run.err;
+    EXPECT_NE(run.err.find(path), std::string::npos) << run.err;
+  }
 }
 
 TEST(Cli, ScanInWrongUnitsExitsTwoNamingUnitsAndStillPrintsTheJson) {
@@ -154,6 +244,28 @@ TEST(Cli, ScanInWrongUnitsExitsTwoNamingUnitsAndStillPrintsTheJson) {
   EXPECT_EQ(lineCount(run.err), 1);
   EXPECT_NE(run.err.find("units"), std::string::npos) << run.err;
   EXPECT_EQ(nlohmann::json::parse(run.out)["error_code"], "units_mismatch");
+}
+
+// Without a registration there is no deviation map: no PLY, a warning saying so, and an HTML
+// report that records why the part was not evaluated.
+TEST(Cli, UnregisteredScanSkipsTheDeviationFileButWritesTheReport) {
+  const std::string ply = temp("unregistered.ply");
+  const std::string html_path = temp("unregistered.html");
+  std::remove(ply.c_str());
+  std::remove(html_path.c_str());
+  const CliRun run = runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan +
+                            " --scan-scale 1000 --deviation " + ply + " --html " + html_path);
+  EXPECT_EQ(run.exit_code, 2);
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_FALSE(std::filesystem::exists(ply));
+  bool warned = false;
+  for (const auto& warning : json["warnings"]) {
+    warned |= warning.get<std::string>().find("'" + ply + "' not written") != std::string::npos;
+  }
+  EXPECT_TRUE(warned) << json["warnings"];
+  const std::string html = slurp(html_path);
+  EXPECT_NE(html.find(">NOT_EVALUATED<"), std::string::npos);
+  EXPECT_NE(html.find("No deviation map"), std::string::npos);
 }
 
 TEST(Cli, InvalidConfigExitsTwoNamingTheKey) {

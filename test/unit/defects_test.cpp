@@ -70,13 +70,14 @@ TEST(Defects, DentOnAMeshIsFoundWithItsPlaceSignPeakAndArea) {
   const double area = discAbove(dent, 2e-4);
   // The centroid of the dented points: on the axis of the dent, below the nominal surface.
   const Eigen::Vector3d offset = region.centroid - dent.centre;
-  std::printf("dent: area %.4g mm^2 (analytic %.4g), centroid %.3g mm off-axis, %.3g mm deep, "
-              "peak %.4g mm\n",
-              region.area * 1e6,
-              area * 1e6,
-              offset.head<2>().norm() * 1e3,
-              offset.z() * 1e3,
-              region.peak * 1e3);
+  std::printf(
+      "dent: area %.4g mm^2 (analytic %.4g), centroid %.3g mm off-axis, %.3g mm deep, "
+      "peak %.4g mm\n",
+      region.area * 1e6,
+      area * 1e6,
+      offset.head<2>().norm() * 1e3,
+      offset.z() * 1e3,
+      region.peak * 1e3);
   EXPECT_EQ(region.sign, -1);
   EXPECT_LT(offset.head<2>().norm(), 0.1e-3);
   EXPECT_LT(offset.z(), -2e-4);

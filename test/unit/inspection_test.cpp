@@ -3,9 +3,11 @@
 // The verdict on the shipped blade: generated scans at random poses (synthetic_scan.h), clean
 // or with a spherical-cap dent of known place and depth pressed into them (surface_defect.h).
 // Noise σ is a share of the CAD diagonal L; tolerances are multiples of σ.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "test_shapes.h"
 #include <gtest/gtest.h>
@@ -242,9 +244,48 @@ TEST(Inspection, ABandNarrowerThanTheNoiseIsFlagged) {
   EXPECT_EQ(result.verdict, Verdict::kFail);
   bool flagged = false;
   for (const auto& warning : result.warnings) {
-    flagged = flagged || warning.find("narrower than 3x the fit's residual noise") != std::string::npos;
+    flagged =
+        flagged || warning.find("narrower than 3x the fit's residual noise") != std::string::npos;
   }
   EXPECT_TRUE(flagged);
+}
+
+TEST(Inspection, ProgressReportsEveryStageAndCancelStopsBeforeOne) {
+  const SyntheticScan truth = makeCase(8, 0.002, false);
+  std::vector<std::string> stages;
+  std::vector<double> fractions;
+  const auto record = [&](const std::string& stage, double fraction) {
+    stages.push_back(stage);
+    fractions.push_back(fraction);
+    return true;
+  };
+  const InspectionResult full = inspect(blade(), truth.scan, PipelineConfig(), record);
+  ASSERT_EQ(full.registration, RegistrationStatus::kOk) << full.status.message;
+  const std::vector<std::string> all = {"clean",
+                                        "descriptors",
+                                        "features",
+                                        "correspondences",
+                                        "global_registration",
+                                        "icp",
+                                        "deviation"};
+  EXPECT_EQ(stages, all);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_GE(fractions.front(), 0.0);
+  EXPECT_LE(fractions.back(), 1.0);
+
+  stages.clear();
+  const auto cancel_at_icp = [&](const std::string& stage, double) {
+    stages.push_back(stage);
+    return stage != "icp";
+  };
+  const InspectionResult cancelled = inspect(blade(), truth.scan, PipelineConfig(), cancel_at_icp);
+  EXPECT_EQ(stages, std::vector<std::string>(all.begin(), all.end() - 1));
+  EXPECT_EQ(cancelled.status.code, StatusCode::kCancelled);
+  EXPECT_EQ(cancelled.verdict, Verdict::kNotEvaluated);
+  EXPECT_NE(cancelled.verdict_reason.find("cancelled before stage icp"), std::string::npos)
+      << cancelled.verdict_reason;
+  EXPECT_TRUE(cancelled.deviation_map.points.empty());
+  EXPECT_EQ(cancelled.timings.back().stage, "total");
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <new>
 #include <utility>
 
@@ -141,15 +142,17 @@ std::size_t removeNonFinite(Scan* scan, std::vector<std::string>* warnings) {
 }
 
 // Scan normals must be unit length; unusable ones become zero rather than invent a direction.
-void normalizeNormals(Points* normals, std::vector<std::string>* warnings) {
+// Only those of finite points are reported (an organized grid's NaN holes have no normal).
+void normalizeNormals(const Points& points, Points* normals, std::vector<std::string>* warnings) {
   std::size_t unusable = 0;
-  for (Eigen::Vector3d& n : *normals) {
+  for (std::size_t i = 0; i < normals->size(); ++i) {
+    Eigen::Vector3d& n = (*normals)[i];
     const double length = n.norm();
     if (std::isfinite(length) && length > 0.0) {
       n /= length;
     } else {
       n.setZero();
-      ++unusable;
+      unusable += points[i].allFinite() ? 1 : 0;
     }
   }
   if (unusable > 0) {
@@ -224,13 +227,26 @@ ScanLoadResult loadScanUnguarded(const std::string& path, double scale) {
   for (Eigen::Vector3d& p : scan.points) {
     p *= scale;  // before the finiteness test, so overflow to inf is caught too
   }
-  result.non_finite_removed = removeNonFinite(&scan, &result.warnings);
-  if (scan.points.empty()) {
+  // An organized PCD keeps its grid, NaN holes included: the pipeline triangulates it on the
+  // grid and removes (and counts) the non-finite points itself.
+  constexpr auto kMaxSide = static_cast<std::size_t>(std::numeric_limits<int>::max());
+  const bool organized = raw.height > 1 && raw.width <= kMaxSide && raw.height <= kMaxSide &&
+                         raw.width * raw.height == scan.points.size() && scan.faces.empty();
+  if (organized) {
+    scan.width = static_cast<int>(raw.width);
+    scan.height = static_cast<int>(raw.height);
+  } else {
+    result.non_finite_removed = removeNonFinite(&scan, &result.warnings);
+  }
+  const bool any_finite = std::any_of(scan.points.begin(),
+                                      scan.points.end(),
+                                      [](const Eigen::Vector3d& p) { return p.allFinite(); });
+  if (!any_finite) {
     result.status = invalid("scan '" + path + "' has no finite points (" +
                             std::to_string(result.file_points) + " stored)");
     return result;
   }
-  normalizeNormals(&scan.normals, &result.warnings);
+  normalizeNormals(scan.points, &scan.normals, &result.warnings);
   return result;
 }
 

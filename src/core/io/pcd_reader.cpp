@@ -96,6 +96,10 @@ Status extract(const std::string& path, const pcl::PCLPointCloud2& cloud, RawGeo
                              " bytes");
   }
   out->file_vertices = width * height;
+  if (height > 1) {
+    out->width = width;
+    out->height = height;
+  }
   out->vertices.reserve(out->file_vertices);
   if (has_normals) {
     out->normals.reserve(out->file_vertices);

@@ -24,6 +24,8 @@ struct RawGeometry {
   Points normals;                     ///< one per vertex when the file has them, else empty
   std::size_t file_vertices = 0;      ///< vertex (STL: corner) count as stored
   std::size_t file_faces = 0;         ///< face (polygon) count as stored
+  std::size_t width = 0;              ///< organized PCD (HEIGHT > 1): columns; else 0
+  std::size_t height = 0;             ///< organized PCD: rows (vertices row-major, NaN kept)
   std::vector<std::string> warnings;  ///< non-fatal findings
 };
 
@@ -36,7 +38,8 @@ Status readPly(const std::string& path, std::string_view bytes, RawGeometry* out
 /// Wavefront OBJ: `v` and `f` lines only; negative indices resolved, polygons as fans.
 Status readObj(const std::string& path, std::string_view bytes, RawGeometry* out);
 
-/// PCD through PCL (ascii, binary, binary_compressed); float or double x/y/z.
+/// PCD through PCL (ascii, binary, binary_compressed); float or double x/y/z. Sets width and
+/// height for an organized cloud (HEIGHT > 1).
 Status readPcd(const std::string& path, RawGeometry* out);
 
 }  // namespace io_internal

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+//
+// The ~inspect_action server of InspectionNode: the Inspect service with stage feedback and
+// cancel. A cancel is honoured between stages, including the core's own stages inside
+// "inspecting" (clean, descriptors, features, ..., deviation; see docs/ros.md).
+#include <chrono>
+#include <string>
+
+#include "conversions.h"
+#include "inspection_node.h"
+
+namespace freeform_inspection_ros {
+namespace {
+
+using freeform_inspection::Inspect;
+using freeform_inspection::InspectionReport;
+
+// How often a queued goal looks for a cancel while another inspection runs.
+constexpr std::chrono::milliseconds kQueuedPollPeriod(100);
+
+Inspect::Request toRequest(const freeform_inspection::InspectGoal& goal) {
+  Inspect::Request request;
+  request.model_id = goal.model_id;
+  request.part_id = goal.part_id;
+  request.use_last_scan = goal.use_last_scan;
+  request.cloud = goal.cloud;
+  request.tolerance_upper = goal.tolerance_upper;
+  request.tolerance_lower = goal.tolerance_lower;
+  return request;
+}
+
+}  // namespace
+
+void InspectionNode::startActionServer() {
+  ros::NodeHandle action_nh(pnh_);
+  action_nh.setCallbackQueue(&action_queue_);
+  action_server_ = std::make_unique<InspectServer>(
+      action_nh,
+      "inspect_action",
+      [this](const freeform_inspection::InspectGoalConstPtr& goal) { onInspectAction(goal); },
+      /*auto_start=*/false);
+  action_server_->start();
+  action_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &action_queue_);
+  action_spinner_->start();
+}
+
+void InspectionNode::onInspectAction(const freeform_inspection::InspectGoalConstPtr& goal) {
+  std::unique_lock<std::timed_mutex> turn(inspect_mutex_, std::defer_lock);
+  if (!actionStage("received", 0.0) || !waitForTurn(&turn)) {
+    InspectionReport report =
+        cancelledReport("while waiting for the running inspection", goal->cloud.header);
+    report.part_id = goal->part_id;
+    finishAction(report);
+    return;
+  }
+  finishAction(inspectAndPublishLocked(
+      toRequest(*goal),
+      [this](const std::string& stage, double progress) { return actionStage(stage, progress); }));
+}
+
+bool InspectionNode::waitForTurn(std::unique_lock<std::timed_mutex>* turn) {
+  while (!turn->try_lock_for(kQueuedPollPeriod)) {
+    if (!actionStage("queued", 0.0)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool InspectionNode::actionStage(const std::string& stage, double progress) {
+  if (action_server_->isPreemptRequested() || stopping()) {
+    return false;
+  }
+  freeform_inspection::InspectFeedback feedback;
+  feedback.stage = stage;
+  feedback.progress = static_cast<float>(progress);
+  action_server_->publishFeedback(feedback);
+  return true;
+}
+
+void InspectionNode::finishAction(const InspectionReport& report) {
+  freeform_inspection::InspectResult result;
+  result.report = report;
+  if (report.error_code == kCancelledCode && action_server_->isNewGoalAvailable()) {
+    result.report.message = "preempted by a newer goal: " + report.message;
+  }
+  result.status = result.report.status;
+  result.message = result.report.message;
+  if (report.error_code == kCancelledCode) {
+    ROS_INFO_STREAM("~inspect_action: " << result.message);
+    action_server_->setPreempted(result, result.message);
+  } else if (report.status == InspectionReport::ERROR) {
+    action_server_->setAborted(result, result.message);  // nothing to judge: the reason is in it
+  } else {
+    action_server_->setSucceeded(result, result.message);
+  }
+}
+
+}  // namespace freeform_inspection_ros

@@ -1,0 +1,198 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "report_html.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "deviation_views.h"
+#include "file_output.h"
+#include "histogram_svg.h"
+#include "html_util.h"
+
+namespace freeform_inspection {
+namespace {
+
+// Inline so the file stays self-contained; print rules keep the banner colours on paper.
+constexpr char kStyle[] = R"(<style>
+body{font-family:sans-serif;margin:24px auto;max-width:1500px;color:#222}
+h1{font-size:20px;margin:0 0 12px}h2{font-size:16px;margin:24px 0 8px;border-bottom:1px solid #ccc}
+table{border-collapse:collapse;font-size:13px}th,td{padding:3px 10px;text-align:left;
+border-bottom:1px solid #eee}td{font-variant-numeric:tabular-nums}
+.verdict{padding:12px 18px;border-radius:6px;color:#fff}.verdict .word{font-size:32px;
+font-weight:bold}.verdict p{margin:4px 0 0;font-size:15px}
+.pass{background:#2e8b3e}.fail{background:#b3202a}.not-evaluated{background:#6b6b6b}
+.views{display:flex;flex-wrap:wrap;gap:12px}figure{margin:0}figcaption{font-size:12px;color:#555}
+.swatch{display:inline-block;width:28px;height:14px;border:1px solid #888}
+.none{color:#666;font-style:italic}pre{font-size:12px}
+@media print{.verdict,.swatch{-webkit-print-color-adjust:exact;print-color-adjust:exact}}
+</style>
+)";
+
+const char* verdictClass(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::kPass:
+      return "pass";
+    case Verdict::kFail:
+      return "fail";
+    case Verdict::kNotEvaluated:
+      break;
+  }
+  return "not-evaluated";
+}
+
+std::string verdictBanner(const InspectionResult& result) {
+  const std::string reason =
+      result.verdict_reason.empty() ? result.status.message : result.verdict_reason;
+  return "<div class=\"verdict " + std::string(verdictClass(result.verdict)) +
+         "\" id=\"verdict\"><div class=\"word\">" + toString(result.verdict) + "</div><p>" +
+         escapeHtml(reason) + "</p></div>\n";
+}
+
+std::string provenanceSection(const ReportProvenance& p, const std::string& config_hash) {
+  return "<h2>Part and traceability</h2>\n<table>\n" +
+         tableRow("Part (CAD file)", {escapeHtml(p.cad_file)}) +
+         tableRow("Scan file", {escapeHtml(p.scan_file)}) +
+         tableRow("Model id", {escapeHtml(p.model_id)}) +
+         tableRow("Inspected (UTC)", {escapeHtml(p.created)}) +
+         tableRow("Model key (mesh + descriptor settings)",
+                  {"<code>" + escapeHtml(p.model_key) + "</code>"}) +
+         tableRow("Scan file hash (FNV-1a 64)", {"<code>" + escapeHtml(p.scan_hash) + "</code>"}) +
+         tableRow("Configuration hash (FNV-1a 64)", {"<code>" + config_hash + "</code>"}) +
+         "</table>\n";
+}
+
+std::string transformText(const Eigen::Isometry3d& T_cad_scan) {
+  std::string text;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      char cell[32];  // fixed width and sign so the columns line up
+      std::snprintf(cell, sizeof(cell), c < 3 ? "%+.6f  " : "%+.7f\n", T_cad_scan(r, c));
+      text += cell;
+    }
+  }
+  return text;
+}
+
+std::string registrationSection(const InspectionResult& r) {
+  const double total = r.timings.empty() ? 0.0 : r.timings.back().seconds;
+  return "<h2>Registration</h2>\n<table>\n" +
+         tableRow("Status",
+                  {std::string(toString(r.registration)) + " (" + toString(r.status.code) + ")"}) +
+         tableRow("Message", {escapeHtml(r.status.message)}) +
+         tableRow("RMSE (inliers)", {millimetres(r.rmse)}) +
+         tableRow("Fitness", {percent(r.fitness)}) + tableRow("Score", {percent(r.score)}) +
+         tableRow("Residual noise (robust sigma)", {millimetres(r.noise_sigma)}) +
+         tableRow("Inlier distance", {millimetres(r.inlier_distance)}) +
+         tableRow("Scan noise", {millimetres(r.scan_noise)}) +
+         tableRow("Alternative poses", {std::to_string(r.alternatives.size())}) +
+         tableRow(
+             "Scan points / faces",
+             {std::to_string(r.counts.scan_points) + " / " + std::to_string(r.counts.scan_faces)}) +
+         tableRow("Features / correspondences",
+                  {std::to_string(r.counts.features) + " / " +
+                   std::to_string(r.counts.correspondences)}) +
+         tableRow("Run time", {number(total, 2) + " s"}) + "</table>\n" +
+         "<p>T_cad_scan (scan to CAD, metres):</p>\n<pre>" + transformText(r.T_cad_scan) +
+         "</pre>\n";
+}
+
+std::string statisticsSection(const DeviationStatistics& s, const ToleranceConfig& tolerance) {
+  std::string html = "<h2>Deviation</h2>\n<p>Tolerance band: " + millimetres(tolerance.lower) +
+                     " to " + millimetres(tolerance.upper) +
+                     " (signed: positive = excess material outside the CAD surface).</p>\n";
+  if (s.evaluated == 0) {
+    return html + "<p class=\"none\">Not measured.</p>\n";
+  }
+  return html + "<table class=\"statistics\">\n" +
+         tableRow("Evaluated / unmatched points",
+                  {std::to_string(s.evaluated) + " / " + std::to_string(s.unmatched)}) +
+         tableRow("In tolerance", {percent(s.in_tolerance_fraction)}) +
+         tableRow("Coverage of the CAD surface", {percent(s.coverage)}) +
+         tableRow("Mean / std / RMS",
+                  {millimetres(s.mean) + " / " + millimetres(s.std) + " / " + millimetres(s.rms)}) +
+         tableRow("Min / max", {millimetres(s.min) + " / " + millimetres(s.max)}) +
+         tableRow("P5 / P50 / P95",
+                  {millimetres(s.p5) + " / " + millimetres(s.p50) + " / " + millimetres(s.p95)}) +
+         tableRow("Shape deviation mean / P95",
+                  {number(s.shape_mean, 4) + " / " + number(s.shape_p95, 4)}) +
+         "</table>\n" + histogramSvg(s, tolerance);
+}
+
+std::string defectRow(std::size_t id, const DefectRegion& d) {
+  const std::string centroid = number(d.centroid.x() * 1e3, 2) + ", " +
+                               number(d.centroid.y() * 1e3, 2) + ", " +
+                               number(d.centroid.z() * 1e3, 2);
+  return tableRow(std::to_string(id),
+                  {d.sign > 0 ? "excess (+)" : "missing (&minus;)",
+                   centroid,
+                   std::to_string(d.points),
+                   number(d.area * 1e6, 3),
+                   millimetres(d.peak),
+                   millimetres(d.mean)});
+}
+
+std::string defectsSection(const std::vector<DefectRegion>& defects) {
+  std::string html = "<h2>Defects</h2>\n";
+  if (defects.empty()) {
+    return html + "<p class=\"none\">No defect regions.</p>\n";
+  }
+  html +=
+      "<table class=\"defects\">\n<tr><th>id</th><th>material</th><th>centroid x, y, z [mm]</th>"
+      "<th>points</th><th>area [mm&sup2;]</th><th>peak</th><th>mean</th></tr>\n";
+  for (std::size_t i = 0; i < defects.size(); ++i) {
+    html += defectRow(i, defects[i]);
+  }
+  return html + "</table>\n";
+}
+
+std::string warningsSection(const std::vector<std::string>& warnings) {
+  if (warnings.empty()) {
+    return "";
+  }
+  std::string html = "<h2>Warnings</h2>\n<ul>\n";
+  for (const std::string& warning : warnings) {
+    html += "<li>" + escapeHtml(warning) + "</li>\n";
+  }
+  return html + "</ul>\n";
+}
+
+std::string configSection(const PipelineConfig& config, const std::string& config_hash) {
+  std::string html = "<h2>Configuration</h2>\n<details><summary>Effective configuration (hash " +
+                     config_hash + ")</summary>\n<table>\n";
+  for (const auto& [key, value] : configEntries(config)) {
+    html += tableRow(escapeHtml(key), {escapeHtml(value)});
+  }
+  return html + "</table>\n</details>\n";
+}
+
+std::string mapSection(const InspectionResult& result, const ToleranceConfig& tolerance) {
+  return "<h2>Deviation map</h2>\n" + deviationViewsHtml(result.deviation_map, tolerance) +
+         colourLegendHtml(result.deviation_map, tolerance);
+}
+
+}  // namespace
+
+std::string renderHtmlReport(const InspectionResult& result,
+                             const PipelineConfig& config,
+                             const ReportProvenance& provenance) {
+  const std::string config_hash = configHash(config);
+  const std::string part = std::filesystem::path(provenance.cad_file).filename().string();
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" +
+         escapeHtml("Inspection " + part + ": " + toString(result.verdict)) + "</title>\n" +
+         kStyle + "</head>\n<body>\n<h1>Inspection report: " + escapeHtml(part) + "</h1>\n" +
+         verdictBanner(result) + provenanceSection(provenance, config_hash) +
+         statisticsSection(result.deviation, config.tolerance) +
+         mapSection(result, config.tolerance) + defectsSection(result.defects) +
+         registrationSection(result) + warningsSection(result.warnings) +
+         configSection(config, config_hash) + "</body>\n</html>\n";
+}
+
+Status saveHtmlReport(const std::string& path,
+                      const InspectionResult& result,
+                      const PipelineConfig& config,
+                      const ReportProvenance& provenance) {
+  return writeOutputFile(path, renderHtmlReport(result, config, provenance), "HTML report");
+}
+
+}  // namespace freeform_inspection

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "report_provenance.h"
+
+#include <charconv>
+#include <cstdio>
+#include <fstream>
+#include <type_traits>
+#include <variant>
+
+#include "freeform_inspection/config_fields.h"
+#include "freeform_inspection/content_hash.h"
+
+namespace freeform_inspection {
+namespace {
+
+std::string valueText(const ConfigField& field) {
+  return std::visit(
+      [](const auto* target) -> std::string {
+        using T = std::decay_t<decltype(*target)>;
+        if constexpr (std::is_same_v<T, bool>) {
+          return *target ? "true" : "false";
+        } else if constexpr (std::is_same_v<T, double>) {
+          char text[32];  // shortest text that reads back to the same double
+          const auto end =
+              std::to_chars(text, text + sizeof(text), *target, std::chars_format::general).ptr;
+          return std::string(text, end);
+        } else {
+          return std::to_string(*target);
+        }
+      },
+      field.target);
+}
+
+}  // namespace
+
+std::string fileHash(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    return "unreadable";
+  }
+  ContentHash hash;
+  char buffer[1 << 16];
+  while (file.read(buffer, sizeof(buffer)) || file.gcount() > 0) {
+    hash.addBytes(buffer, static_cast<std::size_t>(file.gcount()));
+  }
+  return file.eof() ? hash.hex() : "unreadable";
+}
+
+std::vector<std::pair<std::string, std::string>> configEntries(const PipelineConfig& config) {
+  PipelineConfig copy = config;  // configFields() hands out writable pointers
+  std::vector<std::pair<std::string, std::string>> entries;
+  for (const ConfigField& field : configFields(copy)) {
+    entries.emplace_back(field.key, valueText(field));
+  }
+  return entries;
+}
+
+std::string configHash(const PipelineConfig& config) {
+  ContentHash hash;
+  for (const auto& [key, value] : configEntries(config)) {
+    hash.addText(key);
+    hash.addText("=");
+    hash.addText(value);
+    hash.addText("\n");
+  }
+  return hash.hex();
+}
+
+std::string utcTimestamp(std::time_t time) {
+  std::tm utc{};
+  gmtime_r(&time, &utc);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+}  // namespace freeform_inspection
