@@ -10,6 +10,7 @@
 #include "conversions.h"
 #include "model_access.h"
 #include "result_messages.h"
+#include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -59,6 +60,9 @@ InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     return;
   }
   config_ = loaded.config;
+  if (!config_.fixed_frame.empty()) {
+    tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_, nh_);
+  }
   marker_pub_ = pnh_.advertise<visualization_msgs::Marker>("model_marker", 1, /*latch=*/true);
   result_pub_ = pnh_.advertise<InspectionReport>("result", 1, /*latch=*/true);
   deviation_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("deviation", 1);
@@ -309,6 +313,26 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
     report.header = cloud->header;
     return report;
   }
+  std_msgs::Header header = cloud->header;
+  // With a fixed frame the scan is inspected where it was measured (a range image keeps its
+  // sensor at the origin, which orients its normals) and the pose is then carried into the
+  // fixed frame at the scan's stamp.
+  Eigen::Isometry3d T_fixed_scan = Eigen::Isometry3d::Identity();
+  if (!config_.fixed_frame.empty() && header.frame_id != config_.fixed_frame) {
+    try {
+      T_fixed_scan = tf2::transformToEigen(tf_buffer_.lookupTransform(
+          config_.fixed_frame, header.frame_id, header.stamp, ros::Duration(config_.tf_timeout)));
+    } catch (const tf2::TransformException& error) {
+      InspectionReport report = errorReport(
+          "TF_ERROR",
+          "cannot move the scan from frame '" + header.frame_id + "' into '" + config_.fixed_frame +
+              "' at stamp " + std::to_string(header.stamp.toSec()) + " within " +
+              std::to_string(config_.tf_timeout) + " s: " + error.what());
+      report.header = cloud->header;
+      return report;
+    }
+    header.frame_id = config_.fixed_frame;
+  }
   const fi::PipelineConfig pipeline = requestPipeline(config_.pipeline, request);
   if (!stage("inspecting", kInspectingProgress)) {
     return cancelledReport("before the inspection started", cloud->header);
@@ -318,7 +342,14 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
     return stage(name,
                  kInspectingProgress + fraction * (kPublishingProgress - kInspectingProgress));
   };
-  const fi::InspectionResult result = fi::inspect(*model, converted.scan, pipeline, core_stage);
+  fi::InspectionResult result = fi::inspect(*model, converted.scan, pipeline, core_stage);
+  // fixed → scan → CAD (unchanged without a fixed frame; a failed one stays the identity)
+  if (result.registration != fi::RegistrationStatus::kFailed) {
+    result.T_cad_scan = result.T_cad_scan * T_fixed_scan.inverse();
+    for (auto& alternative : result.alternatives) {
+      alternative = alternative * T_fixed_scan.inverse();
+    }
+  }
   if (result.status.code == fi::StatusCode::kCancelled) {
     return cancelledReport("during stage 'inspecting' (" + result.status.message + ")",
                            cloud->header);
@@ -326,7 +357,7 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
   if (!stage("publishing", kPublishingProgress)) {
     return cancelledReport("after stage 'inspecting', before publishing", cloud->header);
   }
-  InspectionReport report = toReport(result, cloud->header, config_.part_frame);
+  InspectionReport report = toReport(result, header, config_.part_frame);
   report.tolerance_upper = pipeline.tolerance.upper;
   report.tolerance_lower = pipeline.tolerance.lower;
   publish(result, pipeline.tolerance, report);

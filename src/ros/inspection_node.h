@@ -17,7 +17,9 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
 
 #include "freeform_inspection/model.h"
 #include <freeform_inspection/Inspect.h>
@@ -126,6 +128,8 @@ class InspectionNode {
   ros::Publisher deviation_viz_pub_;
   ros::Publisher defects_pub_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
+  tf2_ros::Buffer tf_buffer_;  // scans into ~fixed_frame
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   diagnostic_updater::Updater diagnostics_;
   ros::Timer diagnostics_timer_;
   ros::CallbackQueue service_queue_;

@@ -24,6 +24,8 @@ const std::vector<std::string> kNodeKeys = {"model",
                                             "auto_inspect",
                                             "viz_max_points",
                                             "model_dirs",
+                                            "fixed_frame",
+                                            "tf_timeout",
                                             "max_model_mb"};
 
 struct ReadParam {
@@ -71,6 +73,8 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   pnh.param("auto_inspect", config.auto_inspect, config.auto_inspect);
   pnh.param("viz_max_points", config.viz_max_points, config.viz_max_points);
   pnh.param("model_dirs", config.model_dirs, config.model_dirs);
+  pnh.param("fixed_frame", config.fixed_frame, config.fixed_frame);
+  pnh.param("tf_timeout", config.tf_timeout, config.tf_timeout);
   pnh.param("max_model_mb", config.max_model_mb, config.max_model_mb);
   std::set<std::string> known(kNodeKeys.begin(), kNodeKeys.end());
   for (const auto& field : fi::configFields(config.pipeline)) {
@@ -80,6 +84,10 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   if (!config.model.empty() && !fi::unitScale(config.model_units)) {
     result.errors.push_back("~model_units must be 'm', 'mm' or 'in' (got '" + config.model_units +
                             "'): CAD units are never guessed");
+  }
+  if (!(config.tf_timeout >= 0.0 && config.tf_timeout <= 60.0)) {
+    result.errors.push_back("~tf_timeout must be in [0, 60] s (got " +
+                            std::to_string(config.tf_timeout) + ")");
   }
   if (config.max_model_mb < 1) {
     result.errors.push_back("~max_model_mb must be at least 1 (got " +
