@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include "cloud_conversion.h"  // CloudConversion, cloudToScan
+#include <pcl_msgs/PolygonMesh.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_msgs/Header.h>
 #include <visualization_msgs/Marker.h>
@@ -18,22 +20,18 @@ namespace freeform_inspection_ros {
 
 namespace fi = freeform_inspection;
 
-/// A PointCloud2 read into a scan, or the reason it could not be read.
-struct CloudConversion {
-  fi::Status status;  ///< kInvalidInput for inconsistent sizes or missing/odd x, y, z fields
-  fi::Scan scan;      ///< every point as stored, NaN included (the pipeline removes and counts)
-};
-
 /// @brief "PASS", "FAIL", "NOT_EVALUATED" or "ERROR" for an InspectionReport status.
 const char* statusName(std::uint8_t status);
 
 /// @brief Upper-case machine-readable name of a status code, e.g. "INVALID_INPUT".
 std::string errorCode(fi::StatusCode code);
 
-/// @brief Reads x, y, z by field name (FLOAT32 or FLOAT64), organized or not, after checking that
-/// width, height, point_step, row_step and the data size agree. x, y and z must each appear once
-/// (a duplicated coordinate field is refused). Other fields are ignored.
-CloudConversion cloudToScan(const sensor_msgs::PointCloud2& cloud);
+/// @brief A stamped mesh (pcl_msgs/PolygonMesh, as pcl_conversions writes one) read into a scan:
+/// the vertices by cloudToScan(), each polygon of three or more vertices fanned into triangles.
+/// Refused (kInvalidInput) for a cloud cloudToScan() refuses, a polygon of fewer than three
+/// vertices or one that names a vertex the cloud does not have. The faces define the surface, so
+/// a grid layout of the vertex cloud is dropped.
+CloudConversion meshToScan(const pcl_msgs::PolygonMesh& mesh);
 
 /// @brief A scan as an x, y, z FLOAT32 cloud with `header`: organized (width × height, NaN kept)
 /// when the scan is, else one row; `is_dense` is false when any point is not finite. Normals and

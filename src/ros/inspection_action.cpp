@@ -5,10 +5,14 @@
 // cancel. A cancel is honoured between stages, including the core's own stages inside
 // "inspecting" (clean, descriptors, features, ..., deviation; see docs/ros.md).
 #include <chrono>
+#include <functional>
+#include <future>
 #include <string>
+#include <utility>
 
 #include "conversions.h"
 #include "inspection_node.h"
+#include <ros/callback_queue_interface.h>
 
 namespace freeform_inspection_ros {
 namespace {
@@ -19,12 +23,48 @@ using freeform_inspection::InspectionReport;
 // How often a queued goal looks for a cancel while another inspection runs.
 constexpr std::chrono::milliseconds kQueuedPollPeriod(100);
 
+// Runs `read` on the thread that spins the queue it is added to, and hands the answer back.
+class QueueRead : public ros::CallbackInterface {
+ public:
+  explicit QueueRead(std::function<bool()> read) : read_(std::move(read)) {}
+  CallResult call() override {
+    answer_.set_value(read_());
+    return Success;
+  }
+  std::future<bool> answer() { return answer_.get_future(); }
+
+ private:
+  std::function<bool()> read_;
+  std::promise<bool> answer_;
+};
+
+// actionlib's SimpleActionServer::isPreemptRequested() and isNewGoalAvailable() read flags
+// without the server's lock, while its goal and cancel callbacks write them under that lock: a
+// data race that ThreadSanitizer reports (docs/soak_and_tsan.md). Those callbacks all run on the
+// action queue's one spinner thread, so the flag is read there, in order with every write.
+// `stopped` when that thread no longer answers because the node is shutting down.
+bool readOnQueue(ros::CallbackQueue* queue,
+                 std::function<bool()> read,
+                 const std::function<bool()>& shutting_down,
+                 bool stopped) {
+  const auto probe = boost::make_shared<QueueRead>(std::move(read));
+  std::future<bool> answer = probe->answer();
+  queue->addCallback(probe);
+  while (answer.wait_for(kQueuedPollPeriod) != std::future_status::ready) {
+    if (shutting_down()) {
+      return stopped;
+    }
+  }
+  return answer.get();
+}
+
 Inspect::Request toRequest(const freeform_inspection::InspectGoal& goal) {
   Inspect::Request request;
   request.model_id = goal.model_id;
   request.part_id = goal.part_id;
   request.use_last_scan = goal.use_last_scan;
   request.cloud = goal.cloud;
+  request.mesh = goal.mesh;
   request.tolerance_upper = goal.tolerance_upper;
   request.tolerance_lower = goal.tolerance_lower;
   return request;
@@ -49,7 +89,8 @@ void InspectionNode::onInspectAction(const freeform_inspection::InspectGoalConst
   std::unique_lock<std::timed_mutex> turn(inspect_mutex_, std::defer_lock);
   if (!actionStage("received", 0.0) || !waitForTurn(&turn)) {
     InspectionReport report =
-        cancelledReport("while waiting for the running inspection", goal->cloud.header);
+        cancelledReport("while waiting for the running inspection",
+                        goal->mesh.polygons.empty() ? goal->cloud.header : goal->mesh.header);
     report.part_id = goal->part_id;
     finishAction(report);
     return;
@@ -69,7 +110,9 @@ bool InspectionNode::waitForTurn(std::unique_lock<std::timed_mutex>* turn) {
 }
 
 bool InspectionNode::actionStage(const std::string& stage, double progress) {
-  if (action_server_->isPreemptRequested() || stopping()) {
+  const auto shutting_down = [this] { return stopping(); };
+  const auto preempted = [this] { return action_server_->isPreemptRequested(); };
+  if (shutting_down() || readOnQueue(&action_queue_, preempted, shutting_down, true)) {
     return false;
   }
   freeform_inspection::InspectFeedback feedback;
@@ -82,7 +125,10 @@ bool InspectionNode::actionStage(const std::string& stage, double progress) {
 void InspectionNode::finishAction(const InspectionReport& report) {
   freeform_inspection::InspectResult result;
   result.report = report;
-  if (report.error_code == kCancelledCode && action_server_->isNewGoalAvailable()) {
+  const auto shutting_down = [this] { return stopping(); };
+  const auto newer_goal = [this] { return action_server_->isNewGoalAvailable(); };
+  if (report.error_code == kCancelledCode &&
+      readOnQueue(&action_queue_, newer_goal, shutting_down, false)) {
     result.report.message = "preempted by a newer goal: " + report.message;
   }
   result.status = result.report.status;

@@ -9,11 +9,13 @@
 
 #include "conversions.h"
 #include "model_access.h"
+#include "report_files.h"
 #include "result_messages.h"
 #include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "freeform_inspection/content_hash.h"
 #include "freeform_inspection/pipeline.h"
 
 namespace freeform_inspection_ros {
@@ -44,7 +46,18 @@ fi::PipelineConfig requestPipeline(const fi::PipelineConfig& configured,
   return pipeline;
 }
 
+bool hasCloud(const sensor_msgs::PointCloud2& cloud) {
+  return std::uint64_t{cloud.width} * cloud.height > 0 || !cloud.data.empty();
+}
+
 }  // namespace
+
+const std_msgs::Header& ScanMessage::header() const {
+  if (mesh) {
+    return mesh->header.frame_id.empty() ? mesh->cloud.header : mesh->header;
+  }
+  return cloud->header;
+}
 
 InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     // Named by the private namespace: inside a nodelet manager the process name is the manager's.
@@ -66,22 +79,36 @@ InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   marker_pub_ = pnh_.advertise<visualization_msgs::Marker>("model_marker", 1, /*latch=*/true);
   result_pub_ = pnh_.advertise<InspectionReport>("result", 1, /*latch=*/true);
   deviation_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("deviation", 1);
-  deviation_viz_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("deviation_viz", 1);
-  defects_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("defects", 1);
+  // Latched: a viewer started after the inspection still shows its result (rviz).
+  deviation_viz_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("deviation_viz", 1, /*latch=*/true);
+  defects_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("defects", 1, /*latch=*/true);
   diagnostics_.setHardwareID("freeform_inspection");
   diagnostics_.add("inspection", this, &InspectionNode::diagnose);
   diagnostics_timer_ = nh_.createTimer(ros::Duration(1.0),
                                        [this](const ros::TimerEvent&) { diagnostics_.update(); });
   // Queue size 1: the latest scan wins, older ones are dropped.
-  scan_sub_ = nh_.subscribe("scan", 1, &InspectionNode::onScan, this);
+  scan_sub_ = nh_.subscribe<sensor_msgs::PointCloud2>(
+      "scan", 1, [this](const sensor_msgs::PointCloud2ConstPtr& cloud) {
+        onScan(ScanMessage{cloud, {}});
+      });
+  scan_mesh_sub_ = nh_.subscribe<pcl_msgs::PolygonMesh>(
+      "scan_mesh", 1, [this](const pcl_msgs::PolygonMeshConstPtr& mesh) {
+        onScan(ScanMessage{{}, mesh});
+      });
+  // Under the lock: in a nodelet manager the diagnostics timer may already be reading it.
+  std::string model_error;
   if (config_.model.empty()) {
-    model_error_ = "no model loaded: set ~model and ~model_units or call ~load_model";
-    ROS_WARN_STREAM(model_error_);
+    model_error = "no model loaded: set ~model and ~model_units or call ~load_model";
+    ROS_WARN_STREAM(model_error);
   } else {
-    model_error_ = installModel(config_.model, config_.model_units, config_.model_id, nullptr);
-    if (!model_error_.empty()) {
-      ROS_ERROR_STREAM(model_error_ << " (the node keeps running; use ~load_model)");
+    model_error = installModel(config_.model, config_.model_units, config_.model_id, nullptr);
+    if (!model_error.empty()) {
+      ROS_ERROR_STREAM(model_error << " (the node keeps running; use ~load_model)");
     }
+  }
+  {
+    std::lock_guard<std::mutex> lock(model_mutex_);
+    model_error_ = model_error;
   }
   ros::NodeHandle service_nh(pnh_);
   service_nh.setCallbackQueue(&service_queue_);
@@ -114,16 +141,16 @@ InspectionNode::~InspectionNode() {
   }
 }
 
-void InspectionNode::onScan(const sensor_msgs::PointCloud2ConstPtr& cloud) {
+void InspectionNode::onScan(ScanMessage scan) {
   {
     std::lock_guard<std::mutex> lock(scan_mutex_);
-    last_scan_ = cloud;
+    last_scan_ = scan;
     ++scans_received_;
     if (config_.auto_inspect) {
       if (pending_scan_) {
         ++scans_dropped_;  // the worker is busy: the latest scan wins
       }
-      pending_scan_ = cloud;
+      pending_scan_ = std::move(scan);
     }
   }
   scan_arrived_.notify_one();
@@ -135,18 +162,16 @@ void InspectionNode::autoInspectLoop() {
   request.tolerance_upper = std::numeric_limits<double>::quiet_NaN();
   request.tolerance_lower = std::numeric_limits<double>::quiet_NaN();
   while (true) {
-    sensor_msgs::PointCloud2ConstPtr cloud;
+    ScanMessage scan;
     {
       std::unique_lock<std::mutex> lock(scan_mutex_);
-      scan_arrived_.wait(lock, [this] { return stopping_ || pending_scan_; });
+      scan_arrived_.wait(lock, [this] { return stopping_ || static_cast<bool>(pending_scan_); });
       if (stopping_) {
         return;
       }
-      cloud = pending_scan_;
-      pending_scan_.reset();
+      scan = std::exchange(pending_scan_, ScanMessage{});
     }
-    request.cloud = *cloud;
-    const InspectionReport report = inspectAndPublish(request);
+    const InspectionReport report = inspectAndPublish(request, scan);
     ROS_INFO_STREAM("auto_inspect: " << statusName(report.status) << ": " << report.message);
   }
 }
@@ -203,7 +228,7 @@ void InspectionNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   }
 }
 
-sensor_msgs::PointCloud2ConstPtr InspectionNode::lastScan() const {
+ScanMessage InspectionNode::lastScan() const {
   std::lock_guard<std::mutex> lock(scan_mutex_);
   return last_scan_;
 }
@@ -289,31 +314,81 @@ std::optional<InspectionReport> InspectionNode::refusal(
   return std::nullopt;
 }
 
+std::optional<InspectionReport> InspectionNode::requestedScan(const Inspect::Request& request,
+                                                              ScanMessage* scan) const {
+  if (request.use_last_scan) {
+    *scan = lastScan();
+    if (!*scan) {
+      return errorReport("NO_SCAN",
+                         "use_last_scan is set but no scan has arrived on '" +
+                             scan_sub_.getTopic() + "' or '" + scan_mesh_sub_.getTopic() + "'");
+    }
+  } else if (hasCloud(request.mesh.cloud) || !request.mesh.polygons.empty()) {
+    if (hasCloud(request.cloud)) {
+      return errorReport("INVALID_INPUT",
+                         "the request sets both cloud and mesh: give one scan per request");
+    }
+    if (auto refused = tooBig(request.mesh.cloud, request.mesh.header)) {
+      return refused;
+    }
+    scan->mesh = boost::make_shared<const pcl_msgs::PolygonMesh>(request.mesh);
+  } else {
+    if (auto refused = tooBig(request.cloud, request.cloud.header)) {
+      return refused;
+    }
+    scan->cloud = boost::make_shared<const sensor_msgs::PointCloud2>(request.cloud);
+  }
+  return std::nullopt;
+}
+
+std::optional<InspectionReport> InspectionNode::tooBig(const sensor_msgs::PointCloud2& cloud,
+                                                       const std_msgs::Header& header) const {
+  const std::uint64_t points = std::uint64_t{cloud.width} * cloud.height;
+  const std::uint64_t max_points = config_.pipeline.input.max_points;
+  if (points <= max_points) {
+    return std::nullopt;
+  }
+  InspectionReport report =
+      errorReport("INVALID_INPUT",
+                  "scan has " + std::to_string(points) +
+                      " points, more than input/max_points = " + std::to_string(max_points));
+  report.header = header;
+  return report;
+}
+
 InspectionReport InspectionNode::inspect(const Inspect::Request& request,
+                                         ScanMessage scan,
                                          const std::shared_ptr<const fi::Model>& model,
                                          const StageHook& stage) {
   if (auto refused = refusal(request, model)) {
     return *refused;
   }
-  sensor_msgs::PointCloud2ConstPtr cloud =
-      request.use_last_scan ? lastScan()
-                            : boost::make_shared<sensor_msgs::PointCloud2>(request.cloud);
-  if (!cloud) {
-    return errorReport(
-        "NO_SCAN",
-        "use_last_scan is set but no cloud has arrived on '" + scan_sub_.getTopic() + "'");
+  std::string scan_name = "auto_inspect: topic '" + scan_sub_.getTopic() + "'";
+  if (!scan) {
+    if (auto refused = requestedScan(request, &scan)) {
+      return *refused;
+    }
+    scan_name = request.use_last_scan ? "Inspect: last scan" : "Inspect request";
+  }
+  if (scan.mesh) {
+    scan_name += " (mesh)";
+  }
+  const std_msgs::Header& scan_header = scan.header();
+  // Before converting: a far too big cloud must not be copied again.
+  if (auto refused = tooBig(scan.mesh ? scan.mesh->cloud : *scan.cloud, scan_header)) {
+    return *refused;
   }
   if (!stage("converting", kConvertingProgress)) {
-    return cancelledReport("before the cloud was converted", cloud->header);
+    return cancelledReport("before the scan was converted", scan_header);
   }
-  const CloudConversion converted = cloudToScan(*cloud);
+  const CloudConversion converted = scan.mesh ? meshToScan(*scan.mesh) : cloudToScan(*scan.cloud);
   if (!converted.status.ok()) {
     InspectionReport report =
         errorReport(errorCode(converted.status.code), converted.status.message);
-    report.header = cloud->header;
+    report.header = scan_header;
     return report;
   }
-  std_msgs::Header header = cloud->header;
+  std_msgs::Header header = scan_header;
   // With a fixed frame the scan is inspected where it was measured (a range image keeps its
   // sensor at the origin, which orients its normals) and the pose is then carried into the
   // fixed frame at the scan's stamp.
@@ -328,14 +403,14 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
           "cannot move the scan from frame '" + header.frame_id + "' into '" + config_.fixed_frame +
               "' at stamp " + std::to_string(header.stamp.toSec()) + " within " +
               std::to_string(config_.tf_timeout) + " s: " + error.what());
-      report.header = cloud->header;
+      report.header = scan_header;
       return report;
     }
     header.frame_id = config_.fixed_frame;
   }
   const fi::PipelineConfig pipeline = requestPipeline(config_.pipeline, request);
   if (!stage("inspecting", kInspectingProgress)) {
-    return cancelledReport("before the inspection started", cloud->header);
+    return cancelledReport("before the inspection started", scan_header);
   }
   // The core's own stages, mapped into the inspecting span; a cancel stops it between stages.
   const auto core_stage = [&stage](const std::string& name, double fraction) {
@@ -352,16 +427,43 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
   }
   if (result.status.code == fi::StatusCode::kCancelled) {
     return cancelledReport("during stage 'inspecting' (" + result.status.message + ")",
-                           cloud->header);
+                           scan_header);
   }
   if (!stage("publishing", kPublishingProgress)) {
-    return cancelledReport("after stage 'inspecting', before publishing", cloud->header);
+    return cancelledReport("after stage 'inspecting', before publishing", scan_header);
   }
   InspectionReport report = toReport(result, header, config_.part_frame);
   report.tolerance_upper = pipeline.tolerance.upper;
   report.tolerance_lower = pipeline.tolerance.lower;
+  report.part_id = request.part_id;  // names the report files
+  archive(result, pipeline, *model, scan, scan_name, &report);
   publish(result, pipeline.tolerance, report);
   return report;
+}
+
+void InspectionNode::archive(const fi::InspectionResult& result,
+                             const fi::PipelineConfig& pipeline,
+                             const fi::Model& model,
+                             const ScanMessage& scan,
+                             const std::string& scan_name,
+                             InspectionReport* report) const {
+  if (config_.report_dir.empty()) {
+    return;
+  }
+  ReportSource source;
+  source.model_path = model.source();
+  source.scan_name = scan_name;
+  source.part_id = report->part_id;
+  fi::ContentHash hash;
+  const auto& data = scan.mesh ? scan.mesh->cloud.data : scan.cloud->data;
+  hash.addBytes(data.data(), data.size());
+  source.scan_hash = hash.hex();
+  const ReportFilesResult written =
+      writeReportFiles(config_.report_dir, result, pipeline, model, source, report->header);
+  if (!written.error.empty()) {
+    ROS_WARN_STREAM("report files: " << written.error);
+  }
+  report->report_files = written.files;
 }
 
 void InspectionNode::publish(const fi::InspectionResult& result,
@@ -371,7 +473,11 @@ void InspectionNode::publish(const fi::InspectionResult& result,
     return;  // no pose: nothing to place in the part frame
   }
   if (config_.publish_tf && result.registration == fi::RegistrationStatus::kOk) {
-    tf_broadcaster_.sendTransform(report.transform);
+    if (config_.tf_static) {
+      tf_static_broadcaster_.sendTransform(report.transform);
+    } else {
+      tf_broadcaster_.sendTransform(report.transform);
+    }
   }
   std_msgs::Header part_header = report.header;
   part_header.frame_id = config_.part_frame;
@@ -380,22 +486,24 @@ void InspectionNode::publish(const fi::InspectionResult& result,
     deviation_pub_.publish(boost::make_shared<const sensor_msgs::PointCloud2>(
         deviationCloud(result, tolerance, part_header, 0)));
   }
-  if (deviation_viz_pub_.getNumSubscribers() > 0) {
-    deviation_viz_pub_.publish(boost::make_shared<const sensor_msgs::PointCloud2>(deviationCloud(
-        result, tolerance, part_header, static_cast<std::size_t>(config_.viz_max_points))));
-  }
+  // Always: it is small (~viz_max_points) and latched for viewers that come later.
+  deviation_viz_pub_.publish(boost::make_shared<const sensor_msgs::PointCloud2>(deviationCloud(
+      result, tolerance, part_header, static_cast<std::size_t>(config_.viz_max_points))));
   defects_pub_.publish(defectMarkers(result, part_header));
 }
 
-InspectionReport InspectionNode::inspectAndPublish(const Inspect::Request& request) {
+InspectionReport InspectionNode::inspectAndPublish(const Inspect::Request& request,
+                                                   const ScanMessage& scan) {
   std::lock_guard<std::timed_mutex> serial(inspect_mutex_);
-  return inspectAndPublishLocked(request, [](const std::string&, double) { return true; });
+  return inspectAndPublishLocked(
+      request, [](const std::string&, double) { return true; }, scan);
 }
 
 InspectionReport InspectionNode::inspectAndPublishLocked(const Inspect::Request& request,
-                                                         const StageHook& stage) {
+                                                         const StageHook& stage,
+                                                         const ScanMessage& scan) {
   const auto current = model();
-  InspectionReport report = inspect(request, current, stage);
+  InspectionReport report = inspect(request, scan, current, stage);
   report.part_id = request.part_id;
   report.model_id = current ? current->id() : "";
   if (report.error_code == kCancelledCode) {

@@ -14,10 +14,12 @@
 #include "parameters.h"
 #include <actionlib/server/simple_action_server.h>
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <pcl_msgs/PolygonMesh.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <tf2_ros/buffer.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
@@ -28,9 +30,20 @@
 
 namespace freeform_inspection_ros {
 
+/// One scan as it arrived: a cloud on `scan` or a mesh on `scan_mesh`; at most one is set.
+struct ScanMessage {
+  sensor_msgs::PointCloud2ConstPtr cloud;
+  pcl_msgs::PolygonMeshConstPtr mesh;
+
+  explicit operator bool() const { return cloud || mesh; }
+  /// The mesh's header (its cloud's when the mesh's own names no frame), else the cloud's.
+  const std_msgs::Header& header() const;
+};
+
 /// The inspection node: converts and delegates, all geometry is in the core.
 ///
-/// Subscribes `scan`; publishes the part pose on tf, `~deviation`, `~deviation_viz`,
+/// Subscribes `scan` (PointCloud2) and `scan_mesh` (pcl_msgs/PolygonMesh); publishes the part pose
+/// on tf, `~deviation`, `~deviation_viz`,
 /// `~defects`, `~model_marker` and `~result` (latched), and diagnostics; serves `~inspect` and
 /// `~load_model` on their own callback queue and thread, and the `~inspect_action` action on
 /// another, so a long inspection blocks neither incoming scans nor a cancel. With
@@ -54,7 +67,7 @@ class InspectionNode {
   /// progress so far; returns false to cancel the inspection before that stage.
   using StageHook = std::function<bool(const std::string& stage, double progress)>;
 
-  void onScan(const sensor_msgs::PointCloud2ConstPtr& cloud);
+  void onScan(ScanMessage scan);
   bool onInspect(freeform_inspection::Inspect::Request& request,
                  freeform_inspection::Inspect::Response& response);
   bool onLoadModel(freeform_inspection::LoadModel::Request& request,
@@ -74,25 +87,45 @@ class InspectionNode {
                            const std::string& units,
                            const std::string& id,
                            freeform_inspection::LoadModel::Response* summary);
-  /// Runs one inspection, publishes its outputs and returns the report.
+  /// Runs one inspection, publishes its outputs and returns the report. A given `scan` is
+  /// inspected instead of the one the request names (auto_inspect hands the received message on
+  /// without a copy).
   freeform_inspection::InspectionReport inspectAndPublish(
-      const freeform_inspection::Inspect::Request& request);
+      const freeform_inspection::Inspect::Request& request, const ScanMessage& scan = {});
   /// inspectAndPublish() for a caller that holds `inspect_mutex_`; a cancelled run (report
   /// error_code CANCELLED) publishes nothing.
   freeform_inspection::InspectionReport inspectAndPublishLocked(
-      const freeform_inspection::Inspect::Request& request, const StageHook& stage);
+      const freeform_inspection::Inspect::Request& request,
+      const StageHook& stage,
+      const ScanMessage& scan = {});
   freeform_inspection::InspectionReport inspect(
       const freeform_inspection::Inspect::Request& request,
+      ScanMessage scan,
       const std::shared_ptr<const freeform_inspection::Model>& model,
       const StageHook& stage);
   /// The refusal of a request that cannot be inspected (no or another model), or nothing.
   std::optional<freeform_inspection::InspectionReport> refusal(
       const freeform_inspection::Inspect::Request& request,
       const std::shared_ptr<const freeform_inspection::Model>& model) const;
+  /// Sets `scan` to the scan the request names (the last received, its mesh or its cloud), or
+  /// returns the refusal: none received yet, both a cloud and a mesh, or more points than
+  /// input/max_points (refused before anything is copied or converted).
+  std::optional<freeform_inspection::InspectionReport> requestedScan(
+      const freeform_inspection::Inspect::Request& request, ScanMessage* scan) const;
+  /// The refusal of a (vertex) cloud of more than input/max_points points, or nothing.
+  std::optional<freeform_inspection::InspectionReport> tooBig(const sensor_msgs::PointCloud2& cloud,
+                                                              const std_msgs::Header& header) const;
+  /// Writes the report files under ~report_dir and lists them in `report`.
+  void archive(const freeform_inspection::InspectionResult& result,
+               const freeform_inspection::PipelineConfig& pipeline,
+               const freeform_inspection::Model& model,
+               const ScanMessage& scan,
+               const std::string& scan_name,
+               freeform_inspection::InspectionReport* report) const;
   void publish(const freeform_inspection::InspectionResult& result,
                const freeform_inspection::ToleranceConfig& tolerance,
                const freeform_inspection::InspectionReport& report);
-  sensor_msgs::PointCloud2ConstPtr lastScan() const;
+  ScanMessage lastScan() const;
   bool stopping() const;
   std::shared_ptr<const freeform_inspection::Model> model() const;
 
@@ -110,8 +143,8 @@ class InspectionNode {
 
   mutable std::mutex scan_mutex_;
   std::condition_variable scan_arrived_;
-  sensor_msgs::PointCloud2ConstPtr last_scan_;
-  sensor_msgs::PointCloud2ConstPtr pending_scan_;  // auto_inspect: waiting for the worker
+  ScanMessage last_scan_;
+  ScanMessage pending_scan_;  // auto_inspect: waiting for the worker
   bool stopping_ = false;
   std::uint64_t scans_received_ = 0;
   std::uint64_t scans_dropped_ = 0;
@@ -122,12 +155,14 @@ class InspectionNode {
   freeform_inspection::InspectionReport last_report_;
 
   ros::Subscriber scan_sub_;
+  ros::Subscriber scan_mesh_sub_;
   ros::Publisher marker_pub_;
   ros::Publisher result_pub_;
   ros::Publisher deviation_pub_;
   ros::Publisher deviation_viz_pub_;
   ros::Publisher defects_pub_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
+  tf2_ros::StaticTransformBroadcaster tf_static_broadcaster_;
   tf2_ros::Buffer tf_buffer_;  // scans into ~fixed_frame
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   diagnostic_updater::Updater diagnostics_;

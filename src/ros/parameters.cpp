@@ -21,12 +21,14 @@ const std::vector<std::string> kNodeKeys = {"model",
                                             "model_id",
                                             "part_frame",
                                             "publish_tf",
+                                            "tf_static",
                                             "auto_inspect",
                                             "viz_max_points",
                                             "model_dirs",
                                             "fixed_frame",
                                             "tf_timeout",
-                                            "max_model_mb"};
+                                            "max_model_mb",
+                                            "report_dir"};
 
 struct ReadParam {
   const ros::NodeHandle& pnh;
@@ -70,12 +72,14 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   pnh.param("model_id", config.model_id, config.model_id);
   pnh.param("part_frame", config.part_frame, config.part_frame);
   pnh.param("publish_tf", config.publish_tf, config.publish_tf);
+  pnh.param("tf_static", config.tf_static, config.tf_static);
   pnh.param("auto_inspect", config.auto_inspect, config.auto_inspect);
   pnh.param("viz_max_points", config.viz_max_points, config.viz_max_points);
   pnh.param("model_dirs", config.model_dirs, config.model_dirs);
   pnh.param("fixed_frame", config.fixed_frame, config.fixed_frame);
   pnh.param("tf_timeout", config.tf_timeout, config.tf_timeout);
   pnh.param("max_model_mb", config.max_model_mb, config.max_model_mb);
+  pnh.param("report_dir", config.report_dir, config.report_dir);
   std::set<std::string> known(kNodeKeys.begin(), kNodeKeys.end());
   for (const auto& field : fi::configFields(config.pipeline)) {
     std::visit(ReadParam{pnh, field.key, &result.errors}, field.target);

@@ -18,15 +18,20 @@ struct NodeConfig {
   std::string model_id = "default";  ///< name of the start-up model in Inspect requests
   std::string part_frame = "part";   ///< tf child frame of the part pose and of the CAD marker
   bool publish_tf = true;            ///< broadcast the part pose when the registration is ok
-  bool auto_inspect = false;         ///< inspect every scan arriving on `scan` (latest wins)
-  int viz_max_points = 20000;        ///< ~deviation_viz carries at most this many points
+  /// Send the pose on /tf_static (latched: it holds until the next inspection, and viewers that
+  /// start later see it) instead of once on /tf.
+  bool tf_static = false;
+  bool auto_inspect = false;   ///< inspect every scan arriving on `scan` (latest wins)
+  int viz_max_points = 20000;  ///< ~deviation_viz carries at most this many points
   /// Frame that parents the reported part pose: the scan is inspected in its own frame and the
   /// pose carried into this one through tf2 at the scan's stamp; empty: the scan's frame.
   std::string fixed_frame;
   double tf_timeout = 0.5;  ///< [s] how long to wait for the scan's transform
   /// Directories ~load_model may read from; empty: the start-up model's directory only.
   std::vector<std::string> model_dirs;
-  int max_model_mb = 500;                        ///< ~load_model refuses larger CAD files [MiB]
+  int max_model_mb = 500;  ///< ~load_model refuses larger CAD files [MiB]
+  /// Each inspection's HTML report and deviation PLY are written here; empty: none are.
+  std::string report_dir;
   freeform_inspection::PipelineConfig pipeline;  ///< ~input/*, ~tolerance/*
 };
 

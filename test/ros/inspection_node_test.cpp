@@ -33,15 +33,6 @@ using freeform_inspection::InspectionReport;
 using freeform_inspection::LoadModel;
 using namespace freeform_inspection_rostest;  // NOLINT(google-build-using-namespace): test helpers
 
-Inspect::Response callInspect(Inspect::Request request) {
-  Inspect srv;
-  srv.request = std::move(request);
-  EXPECT_TRUE(ros::service::waitForService(nodeName() + "/inspect", kWait));
-  EXPECT_TRUE(ros::service::call(nodeName() + "/inspect", srv))
-      << "the call itself must never fail";
-  return srv.response;
-}
-
 TEST(InspectionNode, PublishesLatchedCadMarkerInMetresInPartFrame) {
   const auto marker =
       ros::topic::waitForMessage<visualization_msgs::Marker>(nodeName() + "/model_marker", kWait);

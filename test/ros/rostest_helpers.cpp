@@ -96,6 +96,15 @@ freeform_inspection::Inspect::Request cloudRequest(const sensor_msgs::PointCloud
   return request;
 }
 
+freeform_inspection::Inspect::Response callInspect(freeform_inspection::Inspect::Request request) {
+  freeform_inspection::Inspect srv;
+  srv.request = std::move(request);
+  EXPECT_TRUE(ros::service::waitForService(nodeName() + "/inspect", kWait));
+  EXPECT_TRUE(ros::service::call(nodeName() + "/inspect", srv))
+      << "the call itself must never fail";
+  return srv.response;
+}
+
 bool waitUntil(const std::function<bool()>& done, const ros::Duration& timeout) {
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout.toSec());
   while (!done()) {

@@ -61,6 +61,9 @@ std::optional<Eigen::Isometry3d> partOnTf(const ros::Time& stamp);
 freeform_inspection::Inspect::Request cloudRequest(const sensor_msgs::PointCloud2& cloud,
                                                    const std::string& part_id = "sn-0001");
 
+/// @brief Calls the node's `~inspect` (waiting for it up to kWait); a failed call fails the test.
+freeform_inspection::Inspect::Response callInspect(freeform_inspection::Inspect::Request request);
+
 /// @brief Polls `done` every 20 ms until it holds or `timeout` (wall time) passes.
 /// @return whether it held.
 bool waitUntil(const std::function<bool()>& done, const ros::Duration& timeout);

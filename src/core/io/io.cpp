@@ -198,6 +198,17 @@ MeshLoadResult loadMeshUnguarded(const std::string& path, double scale) {
   result.mesh.vertices = std::move(raw.vertices);
   result.mesh.faces = std::move(raw.faces);
   result.mesh.face_normals = computeFaceNormals(result.mesh.vertices, result.mesh.faces);
+  // Finite but huge coordinates (1e200) overflow the cross product: a NaN normal would poison
+  // every later stage (found by fuzz_ply_mesh).
+  for (std::size_t f = 0; f < result.mesh.face_normals.size(); ++f) {
+    if (!result.mesh.face_normals[f].allFinite()) {
+      result.status = invalid("'" + path + "': face " + std::to_string(f) +
+                              " has no finite normal: its vertex coordinates are too large "
+                              "(check the scale)");
+      result.mesh = TriangleMesh{};
+      return result;
+    }
+  }
   return result;
 }
 

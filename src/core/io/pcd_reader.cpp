@@ -1,11 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Copyright 2026 The freeform_inspection authors
+#include <cstdint>
 #include <exception>
+#include <filesystem>
 #include <string>
+#include <system_error>
 
 #include "binary_util.h"
+#include "pcd_header.h"
 #include "readers.h"
 #include <pcl/PCLPointCloud2.h>
+#include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
 
 // PCL headers are slow to compile: this is the only file of the library that includes them.
@@ -119,14 +124,54 @@ Status extract(const std::string& path, const pcl::PCLPointCloud2& cloud, RawGeo
   return Status::success();
 }
 
+// PCL's own view of the header must be the one parsePcdHeader checked, fields one after the other
+// and the buffer holding every point: its ascii reader writes past the buffer otherwise (found by
+// fuzz_pcd under valgrind; PCL is not instrumented, ASan cannot see its writes).
+Status checkHeaderLayout(const std::string& path,
+                         const PcdHeader& header,
+                         const pcl::PCLPointCloud2& cloud,
+                         unsigned int data_index) {
+  std::uint64_t step = 0;
+  for (const Field& field : cloud.fields) {
+    if (field.offset != step) {
+      break;
+    }
+    step += std::uint64_t{field.count} * pcl::getFieldSize(field.datatype);
+  }
+  const std::uint64_t points = std::uint64_t{cloud.width} * cloud.height;
+  if (step != cloud.point_step || step != header.point_bytes || points != header.points ||
+      data_index != header.data_offset || cloud.data.size() != points * step) {
+    return Status::failure(StatusCode::kInvalidInput,
+                           "PCD '" + path + "': PCL reads the header as " + std::to_string(points) +
+                               " points of " + std::to_string(cloud.point_step) + " bytes, not " +
+                               std::to_string(header.points) + " of " +
+                               std::to_string(header.point_bytes));
+  }
+  return Status::success();
+}
+
 }  // namespace
 
 Status readPcd(const std::string& path, RawGeometry* out) {
   const auto cannot_read = [&path](const std::string& why) {
     return Status::failure(StatusCode::kInvalidInput, "cannot read PCD '" + path + "': " + why);
   };
+  // Our own strict reading first: PCL allocates from the header while it parses it.
+  PcdHeader header;
+  Status status = parsePcdHeader(path, &header);
+  std::error_code ec;
+  const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
+  if (status.ok() && ec) {
+    return cannot_read(ec.message());
+  }
+  if (status.ok()) {
+    status = checkPcdDataSize(path, header, file_size);
+  }
+  if (!status.ok()) {
+    return status;
+  }
   pcl::PCLPointCloud2 cloud;
-  Eigen::Vector4f origin;
+  Eigen::Vector4f origin;  // PCL leaves parts unset on a malformed VIEWPOINT: not used
   Eigen::Quaternionf orientation;
   int version = 0;
   try {
@@ -140,8 +185,12 @@ Status readPcd(const std::string& path, RawGeometry* out) {
     if (cloud.fields.empty()) {
       return cannot_read("header declares no FIELDS");
     }
-    Status status = extract(path, cloud, nullptr);  // names a missing or mistyped x/y/z
+    status = extract(path, cloud, nullptr);  // names a missing or mistyped x/y/z
     if (!status.ok() || std::size_t{cloud.width} * cloud.height == 0) {
+      return status;
+    }
+    status = checkHeaderLayout(path, header, cloud, data_index);
+    if (!status.ok()) {
       return status;
     }
     if (reader.read(path, cloud, origin, orientation, version) < 0) {
@@ -150,12 +199,10 @@ Status readPcd(const std::string& path, RawGeometry* out) {
   } catch (const std::exception& e) {
     return cannot_read(e.what());
   }
-  Status status = extract(path, cloud, out);
-  if (status.ok() && (!origin.head<3>().isZero() ||
-                      !orientation.coeffs().isApprox(Eigen::Quaternionf::Identity().coeffs()))) {
-    out->warnings.push_back(
-        "PCD VIEWPOINT is not the identity; it is ignored (points are used "
-        "as stored)");
+  status = extract(path, cloud, out);
+  const std::string viewpoint = status.ok() ? pcdViewpointWarning(header) : "";
+  if (!viewpoint.empty()) {
+    out->warnings.push_back(viewpoint);
   }
   return status;
 }

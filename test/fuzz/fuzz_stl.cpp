@@ -1,0 +1,15 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+//
+// libFuzzer target: STL (ascii and binary) through loadMesh and loadScan. Corpus:
+// test/data/fuzz/stl/ (docs/fuzzing.md).
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_entries.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  namespace fuzz = freeform_inspection::fuzz;
+  fuzz::abortIfBroken(fuzz::fuzzStl(data, size));
+  return 0;
+}
