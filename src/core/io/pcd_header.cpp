@@ -36,16 +36,6 @@ constexpr std::array<Keyword, 10> kKeywords = {{{"VERSION", false},
                                                 {"DATA", true}}};
 enum Key { kVersion, kFields, kSize, kType, kCount, kWidth, kHeight, kViewpoint, kPoints, kData };
 
-std::vector<std::string_view> words(std::string_view line) {
-  std::vector<std::string_view> result;
-  std::size_t pos = 0;
-  std::string_view token;
-  while (nextToken(line, &pos, &token)) {
-    result.push_back(token);
-  }
-  return result;
-}
-
 bool isCommentOrBlank(const std::vector<std::string_view>& w) {
   return w.empty() || w[0].front() == '#';
 }

@@ -44,17 +44,6 @@ bool parseType(std::string_view name, PlyType* type) {
   return false;
 }
 
-// Splits a header line into its whitespace-separated words.
-std::vector<std::string_view> words(std::string_view line) {
-  std::vector<std::string_view> result;
-  std::size_t pos = 0;
-  std::string_view token;
-  while (nextToken(line, &pos, &token)) {
-    result.push_back(token);
-  }
-  return result;
-}
-
 Status parseProperty(const std::vector<std::string_view>& w,
                      const std::string& where,
                      PlyProperty* property) {

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 /// @file text_util.h
 /// Locale-independent tokenizing and number parsing for the text formats (STL, OBJ, PLY).
@@ -70,6 +71,17 @@ inline bool nextToken(std::string_view text, std::size_t* pos, std::string_view*
   *token = text.substr(begin, i - begin);
   *pos = i;
   return true;
+}
+
+/// Splits a header line into its whitespace-separated words (views into `line`).
+inline std::vector<std::string_view> words(std::string_view line) {
+  std::vector<std::string_view> result;
+  std::size_t pos = 0;
+  std::string_view token;
+  while (nextToken(line, &pos, &token)) {
+    result.push_back(token);
+  }
+  return result;
 }
 
 /// Parses the whole token as a double ("1", "-2.5e3", "+4", "nan", "inf").
