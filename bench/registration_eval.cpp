@@ -6,10 +6,13 @@
 // with status "ok"; a wrong pose reported as "ok" is counted separately (it must never happen).
 //
 //   registration_eval --cad FILE [--cad-scale S] [--noise R] [--partial] [--outliers F]
-//                     [--points N] [--cases N] [--first-seed N] [--mesh-copy] [--json]
+//                     [--points N] [--cases N] [--first-seed N] [--mesh-copy] [--camera] [--json]
 //
 // --mesh-copy is the paper's §4.5 experiment: the scan is the CAD mesh itself, vertices moved by
 // Gaussian noise along their normals, at a random pose (a mesh scan, faces included).
+// --camera registers one range image of the virtual scanner per case instead. Environment:
+// FI_KEEP_GRID keeps a camera view's grid, FI_NO_NORMALS drops the scan's normals, FI_VERBOSE
+// prints every case's status message under its line.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -110,7 +113,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: registration_eval --cad FILE [--cad-scale S] [--noise R] "
                  "[--partial] [--outliers F] [--points N] [--cases N] [--first-seed N] "
-                 "[--json]\n");
+                 "[--mesh-copy] [--camera] [--json]\n");
     return 2;
   }
   const auto load_start = std::chrono::steady_clock::now();
@@ -211,7 +214,7 @@ int main(int argc, char** argv) {
     } else {
       std::printf(
           "seed %3llu %-9s rot %8.3f deg  t %7.4f %%L  rms/σ %5.2f  score %.3f  "
-          "fit %.3f  f/c/k %zu/%zu/%zu  %.2f s%s\n",
+          "fit %.3f  surface %.3f  f/c/k %zu/%zu/%zu  %.2f s%s\n",
           static_cast<unsigned long long>(config.seed),
           fi::toString(result.registration),
           rotation,
@@ -219,11 +222,15 @@ int main(int argc, char** argv) {
           rms_over_sigma,
           result.score,
           result.fitness,
+          result.surface_on_cad,
           result.counts.features,
           result.counts.candidates,
           result.counts.correspondences,
           seconds,
           !right && is_ok ? "  <-- WRONG POSE REPORTED OK" : "");
+      if (std::getenv("FI_VERBOSE") != nullptr) {
+        std::printf("    %s\n", result.status.message.c_str());
+      }
     }
   }
   std::printf(

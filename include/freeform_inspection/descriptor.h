@@ -23,15 +23,20 @@ namespace freeform_inspection {
 
 /// Descriptor settings (paper defaults).
 struct DescriptorConfig {
-  int scales = 6;                      ///< K, number of kernel radii (paper: 6)
-  double max_radius_ratio = 0.1;       ///< r_max / L_max, L_max = CAD bounding-box diagonal (paper)
-  double cell_ratio = 0.6;             ///< surface-graph cell size / r_1: resolution of the balls
-  int cloud_edge_neighbours = 8;       ///< clouds: kNN surface edges per point
-  double cloud_thinning_ratio = 0.1;   ///< clouds: one point per voxel of this × r_1 is
-                                       ///< analysed (denser sampling adds cost, not detail);
-                                       ///< 0 analyses every point
-  MeshCurvatureConfig mesh_curvature;  ///< one-ring curvature on meshes
-  CloudCurvatureConfig cloud_curvature;  ///< local-quadric curvature on clouds
+  int scales = 6;                     ///< K, number of kernel radii (paper: 6)
+  double max_radius_ratio = 0.1;      ///< r_max / L_max, L_max = CAD bounding-box diagonal (paper)
+  double cell_ratio = 0.6;            ///< surface-graph cell size / r_1: resolution of the balls
+  int cloud_edge_neighbours = 8;      ///< clouds: kNN surface edges per point
+  double cloud_edge_spacings = 3.0;   ///< clouds: surface edges up to max(r_1, this × the
+                                      ///< median point spacing), so sparse scans stay joined
+  double cloud_thinning_ratio = 0.1;  ///< clouds: one point per voxel of this × r_1 is
+                                      ///< analysed (denser sampling adds cost, not detail);
+                                      ///< 0 analyses every point
+  std::size_t max_analysed_points = 100000;  ///< clouds: at most this many of the thinned
+                                             ///< points are analysed, evenly spread (a 1M-point
+                                             ///< scan costs a 100k one); 0 = no cap
+  MeshCurvatureConfig mesh_curvature;        ///< one-ring curvature on meshes
+  CloudCurvatureConfig cloud_curvature;      ///< local-quadric curvature on clouds
 };
 
 /// @brief Checks the settings; one message per bad field, empty when valid.

@@ -43,6 +43,11 @@ struct GlobalRegistrationConfig {
   /// with outliers or local defects leaves points out, but its robust σ stays the noise.)
   double max_residual_ratio = 1.5;
   double residual_fitness = 0.99;
+  /// A pose that leaves more than 1 − this of the scan's *surface* (linked cells, not scattered
+  /// outliers) farther than the inlier distance from the CAD is not trusted: a flipped or slid
+  /// pose leaves a connected patch off the part. A scan with more foreign surface than that
+  /// (fixture, table) must be cropped, or this lowered (surface_support.h).
+  double min_surface_on_cad = 0.8;
 };
 
 /// @brief One message per invalid field; empty when valid.

@@ -96,6 +96,9 @@ struct InspectionResult {
   double noise_sigma = std::numeric_limits<double>::quiet_NaN();  ///< [m] robust σ of residuals
   double score = 0.0;  ///< verification score of the pose: share of the scan it explains
   double scan_noise = std::numeric_limits<double>::quiet_NaN();  ///< [m] the scan's own noise
+  /// Share of the scan's surface (linked cells) within the inlier distance of the CAD at the
+  /// pose: 1 for a right pose on a clean scan, whatever its outliers (surface_support.h).
+  double surface_on_cad = std::numeric_limits<double>::quiet_NaN();
   DeviationStatistics deviation;      ///< empty unless the registration is ok or ambiguous
   std::vector<DefectRegion> defects;  ///< largest |peak| first
   DeviationMap deviation_map;         ///< per scan point, CAD frame (empty when failed)

@@ -13,6 +13,7 @@
 
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/mesh_adjacency.h"
+#include "freeform_inspection/point_index.h"
 
 namespace freeform_inspection {
 namespace {
@@ -105,6 +106,59 @@ std::vector<int> thinCloud(const Points& points, double voxel, std::vector<int>*
   return kept;
 }
 
+// At most `cap` of the voxel representatives are analysed: an evenly spread share of them, and
+// every other representative joins its nearest analysed one. Coarser voxels would do the same
+// faster, but a voxel wider than half a thin wall holds points of both sides, which then share
+// one side's value (the blade's 0.6 mm trailing edge); the 0.1 r_1 voxels stay below that.
+void capAnalysed(const Points& points,
+                 std::size_t cap,
+                 std::vector<int>* analysed,
+                 std::vector<int>* representative) {
+  const std::size_t count = analysed->size();
+  if (cap == 0 || count <= cap) {
+    return;
+  }
+  std::vector<int> slot(count, -1);  // old entry → new entry, for the kept ones
+  std::vector<int> kept;
+  Points kept_points;
+  kept.reserve(cap);
+  for (std::size_t j = 0; j < cap; ++j) {
+    const std::size_t entry = j * count / cap;  // deterministic, evenly spread
+    slot[entry] = static_cast<int>(kept.size());
+    kept.push_back((*analysed)[entry]);
+    kept_points.push_back(points[static_cast<std::size_t>((*analysed)[entry])]);
+  }
+  const PointIndex index(kept_points);
+  const auto entries = static_cast<long>(count);
+#pragma omp parallel for schedule(static)
+  for (long e = 0; e < entries; ++e) {
+    const auto u = static_cast<std::size_t>(e);
+    if (slot[u] < 0) {
+      slot[u] = index.nearest(points[static_cast<std::size_t>((*analysed)[u])], 1).front().index;
+    }
+  }
+  for (int& r : *representative) {
+    r = slot[static_cast<std::size_t>(r)];
+  }
+  *analysed = std::move(kept);
+}
+
+// Median distance from a point to its nearest other point, from the neighbour table (column 0
+// is the point itself), over every 7th point.
+double tableSpacing(const Points& points, const internal::NeighbourTable& table) {
+  std::vector<double> nearest;
+  for (std::size_t i = 0; table.k > 1 && i < points.size(); i += 7) {
+    const auto other = static_cast<std::size_t>(table.of(i)[1]);
+    nearest.push_back(std::sqrt(internal::squaredDistance(points[i], points[other])));
+  }
+  if (nearest.empty()) {
+    return 0.0;
+  }
+  const auto middle = nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2);
+  std::nth_element(nearest.begin(), middle, nearest.end());
+  return *middle;
+}
+
 template <typename T>
 std::vector<T> select(const std::vector<T>& values, const std::vector<int>& indices) {
   std::vector<T> selected;
@@ -144,6 +198,9 @@ std::vector<std::string> validate(const DescriptorConfig& config) {
   }
   if (!(config.cloud_thinning_ratio >= 0.0 && config.cloud_thinning_ratio <= 1.0)) {
     errors.push_back("descriptor.cloud_thinning_ratio must be in [0, 1]");
+  }
+  if (!(config.cloud_edge_spacings >= 0.0 && std::isfinite(config.cloud_edge_spacings))) {
+    errors.push_back("descriptor.cloud_edge_spacings must be a finite value >= 0");
   }
   if (config.cloud_edge_neighbours < 3) {
     errors.push_back("descriptor.cloud_edge_neighbours must be at least 3");
@@ -185,6 +242,9 @@ DescriptorResult computeDescriptors(const Points& points,
       faces.empty()
           ? thinCloud(points, config.cloud_thinning_ratio * radii.front(), &representative)
           : std::vector<int>();
+  if (faces.empty()) {
+    capAnalysed(points, config.max_analysed_points, &result.analysed, &representative);
+  }
   const bool thinned = faces.empty() && result.analysed.size() < points.size();
   const Points analysed_points = thinned ? select(points, result.analysed) : Points();
   const Points& surface = thinned ? analysed_points : points;
@@ -195,13 +255,17 @@ DescriptorResult computeDescriptors(const Points& points,
   if (!result.status.ok()) {
     return result;
   }
-  const std::vector<SurfaceEdge> edges = faces.empty()
-                                             ? internal::cloudEdges(surface,
-                                                                    result.curvature.normals,
-                                                                    table,
-                                                                    config.cloud_edge_neighbours,
-                                                                    radii.front())
-                                             : meshEdges(faces);
+  // Edges up to r_1 join a scan sampled finer than the cells; a sparse one (3,000 points on the
+  // blade: spacing ≈ r_1) would fall apart into islands no geodesic ball can grow over.
+  const double edge_length =
+      faces.empty()
+          ? std::max(radii.front(), config.cloud_edge_spacings * tableSpacing(surface, table))
+          : 0.0;
+  const std::vector<SurfaceEdge> edges =
+      faces.empty()
+          ? internal::cloudEdges(
+                surface, result.curvature.normals, table, config.cloud_edge_neighbours, edge_length)
+          : meshEdges(faces);
   const SurfaceSamples samples{
       &surface, &result.curvature.normals, &result.curvature.area, &result.curvature.mean};
   result.graph = buildSurfaceGraph(samples, edges, config.cell_ratio * radii.front());

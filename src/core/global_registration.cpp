@@ -151,6 +151,9 @@ std::vector<std::string> validate(const GlobalRegistrationConfig& config) {
   if (!(config.residual_fitness >= 0.0 && config.residual_fitness <= 1.0)) {
     errors.push_back("registration.residual_fitness must be in [0, 1]");
   }
+  if (!(config.min_surface_on_cad >= 0.0 && config.min_surface_on_cad <= 1.0)) {
+    errors.push_back("registration.min_surface_on_cad must be in [0, 1]");
+  }
   if (!(config.verification_distance_cells > 0.0 &&
         std::isfinite(config.verification_distance_cells))) {
     errors.push_back("registration.verification_distance_cells must be a finite value > 0");

@@ -47,7 +47,9 @@ std::string descriptorCacheKey(const TriangleMesh& mesh, const DescriptorConfig&
   hash.add(config.max_radius_ratio);
   hash.add(config.cell_ratio);
   hash.add(config.cloud_edge_neighbours);
+  hash.add(config.cloud_edge_spacings);
   hash.add(config.cloud_thinning_ratio);
+  hash.add(config.max_analysed_points);
   hash.add(config.mesh_curvature.method);
   hash.add(config.cloud_curvature.neighbours);
   return hash.hex();

@@ -12,6 +12,7 @@
 
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/organized_mesh.h"
+#include "freeform_inspection/surface_support.h"
 #include "freeform_inspection/view_hints.h"
 
 namespace freeform_inspection {
@@ -286,17 +287,27 @@ void registerScan(const Model& model,
                              config.registration.pair_tolerance_cells * cell));
 
   result->scan_noise = estimateScanNoise(scan_points, 2.0 * cad.radii.front());
+  result->surface_on_cad = surfaceOnCad(scan.graph,
+                                        scan_points,
+                                        model.query(),
+                                        icp.T_cad_scan,
+                                        icp.inlier_distance,
+                                        config.registration.verification_points);
   const double noise_floor = std::max(result->scan_noise, 1e-3 * diagonal);
   const bool stretched = icp.sigma > config.registration.max_residual_ratio * noise_floor &&
                          icp.fitness < config.registration.residual_fitness;
   if (result->score < config.registration.min_score ||
-      result->fitness < config.registration.min_fitness || stretched) {
+      result->fitness < config.registration.min_fitness || stretched ||
+      result->surface_on_cad < config.registration.min_surface_on_cad) {
     result->status = Status::failure(
         StatusCode::kRegistrationFailed,
         "no pose explains the scan: best pose explains " + std::to_string(result->score) +
             " of it (registration.min_score " + std::to_string(config.registration.min_score) +
             "), ICP fitness " + std::to_string(result->fitness) + " (registration.min_fitness " +
-            std::to_string(config.registration.min_fitness) + "), residual " +
+            std::to_string(config.registration.min_fitness) + "), " +
+            std::to_string(result->surface_on_cad) +
+            " of the scan's surface on the CAD (registration.min_surface_on_cad " +
+            std::to_string(config.registration.min_surface_on_cad) + "), residual " +
             formatLength(icp.sigma) + " for a scan noise of " + formatLength(result->scan_noise) +
             " (registration.max_residual_ratio " +
             std::to_string(config.registration.max_residual_ratio) + ")");

@@ -82,6 +82,7 @@ std::string registrationSection(const InspectionResult& r) {
          tableRow("Message", {escapeHtml(r.status.message)}) +
          tableRow("RMSE (inliers)", {millimetres(r.rmse)}) +
          tableRow("Fitness", {percent(r.fitness)}) + tableRow("Score", {percent(r.score)}) +
+         tableRow("Scan surface on the CAD", {percent(r.surface_on_cad)}) +
          tableRow("Residual noise (robust sigma)", {millimetres(r.noise_sigma)}) +
          tableRow("Inlier distance", {millimetres(r.inlier_distance)}) +
          tableRow("Scan noise", {millimetres(r.scan_noise)}) +

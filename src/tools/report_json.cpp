@@ -112,6 +112,7 @@ nlohmann::ordered_json toJson(const InspectionResult& result) {
   json["noise_sigma"] = numberOrNull(result.noise_sigma);
   json["inlier_distance"] = numberOrNull(result.inlier_distance);
   json["scan_noise"] = numberOrNull(result.scan_noise);
+  json["surface_on_cad"] = numberOrNull(result.surface_on_cad);
   json["verdict"] = toString(result.verdict);
   json["verdict_reason"] = result.verdict_reason;
   json["deviation"] = deviationJson(result.deviation);
