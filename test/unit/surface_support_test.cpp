@@ -42,40 +42,36 @@ BoxScan boxScan(double outliers) {
 
 constexpr double kBand = 0.0005;  // 0.5 mm: the inlier distance of a clean scan of this size
 
-TEST(SurfaceSupport, RightPoseOfACleanScanPutsAllOfItsSurfaceOnTheCad) {
-  const BoxScan scan = boxScan(0.0);
-  ASSERT_TRUE(scan.descriptors.status.ok()) << scan.descriptors.status.message;
+// The share of `scan`'s surface on its own box at `pose`.
+double shareAt(const BoxScan& scan, const Eigen::Isometry3d& pose) {
+  EXPECT_TRUE(scan.descriptors.status.ok()) << scan.descriptors.status.message;
   const MeshQuery cad(scan.cad);
-  const double share = surfaceOnCad(
-      scan.descriptors.graph, scan.points, cad, Eigen::Isometry3d::Identity(), kBand, 1500);
-  EXPECT_GT(share, 0.999);
+  return surfaceOnCad(scan.descriptors.graph, scan.points, cad, pose, kBand, 1500);
+}
+
+TEST(SurfaceSupport, RightPoseOfACleanScanPutsAllOfItsSurfaceOnTheCad) {
+  EXPECT_GT(shareAt(boxScan(0.0), Eigen::Isometry3d::Identity()), 0.999);
 }
 
 TEST(SurfaceSupport, ScatteredOutliersAreNotSurface) {
   // 20 % outliers: ICP fitness would be 0.83 at the right pose. Only the outliers close enough
   // to the faces to link to them count (measured 0.953), far above a slid pose's 0.71.
-  const BoxScan scan = boxScan(0.2);
-  ASSERT_TRUE(scan.descriptors.status.ok()) << scan.descriptors.status.message;
-  const MeshQuery cad(scan.cad);
-  const double share = surfaceOnCad(
-      scan.descriptors.graph, scan.points, cad, Eigen::Isometry3d::Identity(), kBand, 1500);
-  EXPECT_GT(share, 0.93) << "seed " << kSeed;
+  EXPECT_GT(shareAt(boxScan(0.2), Eigen::Isometry3d::Identity()), 0.93) << "seed " << kSeed;
 }
 
 TEST(SurfaceSupport, SlidPoseLeavesTheFacesAcrossTheSlideOffTheCad) {
   const BoxScan scan = boxScan(0.0);
-  const MeshQuery cad(scan.cad);
   Eigen::Isometry3d slid = Eigen::Isometry3d::Identity();
   slid.translation() = Eigen::Vector3d(0.005, 0.0, 0.0);
   // The ±x faces (19 % of the area) are 5 mm off and a 5 mm strip of the others hangs over the
   // edge (5 % more): about three quarters stay on the CAD (measured 0.709).
-  const double share = surfaceOnCad(scan.descriptors.graph, scan.points, cad, slid, kBand, 1500);
+  const double share = shareAt(scan, slid);
   EXPECT_GT(share, 0.65);
   EXPECT_LT(share, 0.78);
   // A half-turn about z maps the box onto itself: all of it is supported again.
   Eigen::Isometry3d turned = Eigen::Isometry3d::Identity();
   turned.linear() = Eigen::AngleAxisd(3.14159265358979323846, Eigen::Vector3d::UnitZ()).matrix();
-  EXPECT_GT(surfaceOnCad(scan.descriptors.graph, scan.points, cad, turned, kBand, 1500), 0.999);
+  EXPECT_GT(shareAt(scan, turned), 0.999);
 }
 
 TEST(SurfaceSupport, NothingToMeasureIsFullSupportNotACrash) {
