@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "pose_error.h"
 #include <Eigen/Geometry>
 
 #include "freeform_inspection/model.h"
@@ -34,8 +35,6 @@
 namespace fi = freeform_inspection;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // One range scan: its grid (NaN where nothing was measured) in the scanner's frame.
 struct RangeScan {
@@ -155,10 +154,6 @@ fi::TriangleMesh viewAsMesh(const RangeScan& scan, const Eigen::Isometry3d& pose
   return mesh;
 }
 
-double rotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() * 180.0 / kPi;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -213,7 +208,7 @@ int main(int argc, char** argv) {
     const Eigen::Isometry3d& truth = poses.at(scan_view);
     const fi::InspectionResult result = fi::inspect(model, scan, config);
     const double diagonal = model.bounds().diagonal();
-    const double rotation = rotationErrorDeg(result.T_cad_scan, truth);
+    const double rotation = fi::bench::rotationErrorDeg(result.T_cad_scan, truth);
     const double translation = (result.T_cad_scan * centroid - truth * centroid).norm() / diagonal;
     const bool right = rotation < 2.0 && translation < 0.01;
     const bool is_ok = result.registration == fi::RegistrationStatus::kOk;

@@ -30,6 +30,7 @@
 
 #include "pcl_compare_report.h"
 #include "pcl_pipeline.h"
+#include "pose_error.h"
 #include <malloc.h>
 
 #include "freeform_inspection/model.h"
@@ -182,10 +183,6 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-double rotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() * 180.0 / M_PI;
-}
-
 // RMS distance [m] from the true surface points (outliers excluded), moved by `T_cad_scan`, to
 // the exact CAD triangles; at most 30,000 evenly spread points.
 double surfaceRms(const fi::Model& model,
@@ -216,7 +213,7 @@ void scorePose(const fi::Model& model,
     centroid += generated.scan.points[i] / static_cast<double>(surface);
   }
   const double diagonal = model.bounds().diagonal();
-  record->rotation_deg = rotationErrorDeg(T_cad_scan, generated.T_cad_scan);
+  record->rotation_deg = fb::rotationErrorDeg(T_cad_scan, generated.T_cad_scan);
   record->translation_ratio =
       (T_cad_scan * centroid - generated.T_cad_scan * centroid).norm() / diagonal;
   record->right = record->rotation_deg < 2.0 && record->translation_ratio < 0.01;

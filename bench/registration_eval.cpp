@@ -21,6 +21,8 @@
 #include <random>
 #include <string>
 
+#include "pose_error.h"
+
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
 #include "freeform_inspection/synthetic_scan.h"
@@ -101,10 +103,6 @@ bool parse(int argc, char** argv, Options* options) {
   return !options->cad.empty();
 }
 
-double rotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() * 180.0 / M_PI;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -183,7 +181,7 @@ int main(int argc, char** argv) {
       }
     }
     centroid /= static_cast<double>(std::max<std::size_t>(surface, 1));
-    const double rotation = rotationErrorDeg(result.T_cad_scan, truth);
+    const double rotation = fi::bench::rotationErrorDeg(result.T_cad_scan, truth);
     const double translation = (result.T_cad_scan * centroid - truth * centroid).norm() / diagonal;
     const bool right = rotation < 2.0 && translation < 0.01;
     const bool is_ok = result.registration == fi::RegistrationStatus::kOk;
