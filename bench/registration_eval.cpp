@@ -7,6 +7,7 @@
 //
 //   registration_eval --cad FILE [--cad-scale S] [--noise R] [--partial] [--outliers F]
 //                     [--points N] [--cases N] [--first-seed N] [--mesh-copy] [--camera] [--json]
+//                     [--config YAML]
 //
 // --mesh-copy is the paper's §4.5 experiment: the scan is the CAD mesh itself, vertices moved by
 // Gaussian noise along their normals, at a random pose (a mesh scan, faces included).
@@ -23,6 +24,7 @@
 
 #include "pose_error.h"
 
+#include "freeform_inspection/config_yaml.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
 #include "freeform_inspection/synthetic_scan.h"
@@ -41,6 +43,7 @@ struct Options {
   bool json = false;
   bool mesh_copy = false;
   bool camera = false;  // --camera: one VGA range image (virtual_scanner.h) per case
+  std::string config;   // --config: a pipeline YAML (config/default.yaml's keys); default: none
 };
 
 // The CAD mesh with noise of σ along the area-weighted vertex normals, moved like `generated`.
@@ -96,6 +99,8 @@ bool parse(int argc, char** argv, Options* options) {
       options->mesh_copy = true;
     } else if (flag == "--json") {
       options->json = true;
+    } else if (flag == "--config" && i + 1 < argc) {
+      options->config = argv[++i];
     } else {
       return false;
     }
@@ -111,8 +116,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: registration_eval --cad FILE [--cad-scale S] [--noise R] "
                  "[--partial] [--outliers F] [--points N] [--cases N] [--first-seed N] "
-                 "[--mesh-copy] [--camera] [--json]\n");
+                 "[--mesh-copy] [--camera] [--json] [--config YAML]\n");
     return 2;
+  }
+  fi::PipelineConfig pipeline_config;
+  if (!options.config.empty()) {
+    const fi::ConfigLoadResult read = fi::loadPipelineConfigFile(options.config);
+    if (!read.status.ok()) {
+      std::fprintf(stderr, "registration_eval: %s\n", read.status.message.c_str());
+      return 2;
+    }
+    pipeline_config = read.config;
   }
   const auto load_start = std::chrono::steady_clock::now();
   const fi::ModelLoadResult loaded = fi::loadModel(options.cad, options.cad_scale, "eval");
@@ -171,7 +185,7 @@ int main(int argc, char** argv) {
     if (std::getenv("FI_NO_NORMALS") != nullptr) {
       scan.normals.clear();
     }
-    const fi::InspectionResult result = fi::inspect(model, scan, fi::PipelineConfig());
+    const fi::InspectionResult result = fi::inspect(model, scan, pipeline_config);
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     std::size_t surface = 0;
     for (std::size_t i = 0; i + outliers < scan.points.size(); ++i) {

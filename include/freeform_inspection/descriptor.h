@@ -35,8 +35,12 @@ struct DescriptorConfig {
   std::size_t max_analysed_points = 100000;  ///< clouds: at most this many of the thinned
                                              ///< points are analysed, evenly spread (a 1M-point
                                              ///< scan costs a 100k one); 0 = no cap
-  MeshCurvatureConfig mesh_curvature;        ///< one-ring curvature on meshes
-  CloudCurvatureConfig cloud_curvature;      ///< local-quadric curvature on clouds
+  double noise_fit_multiple = 3.0;       ///< clouds: the curvature fit's neighbourhood reaches at
+                                         ///< least this × the scan's measured noise σ (more
+                                         ///< neighbours than cloud_neighbours on a noisy scan)
+  int max_cloud_neighbours = 256;        ///< clouds: ... with at most this many neighbours
+  MeshCurvatureConfig mesh_curvature;    ///< one-ring curvature on meshes
+  CloudCurvatureConfig cloud_curvature;  ///< local-quadric curvature on clouds
 };
 
 /// @brief Checks the settings; one message per bad field, empty when valid.
@@ -55,6 +59,7 @@ struct DescriptorResult {
   SurfaceGraph graph;              ///< cells on which the balls were grown
   Eigen::MatrixXd cell_values;     ///< cells × K: V_k of every cell
   Eigen::MatrixXd cell_curvature;  ///< cells × K: H̃_k of every cell [1/m]
+  int cloud_neighbours = 0;        ///< clouds: neighbours of the curvature fit (0 on meshes)
   std::vector<std::string> warnings;
 
   /// V_k of point i: the value of its cell (NaN for a point without area).
@@ -66,10 +71,13 @@ struct DescriptorResult {
 /// the cell its voxel's representative fell in.
 /// @param normals optional (empty or one per point): scanner normals for clouds.
 /// @param radii kernel radii from kernelRadii() of the CAD model.
+/// @param noise_sigma [m] the cloud's measured noise (scan_noise.h), 0 when unknown: sizes the
+/// curvature fit of a noisy cloud (DescriptorConfig::noise_fit_multiple). Meshes ignore it.
 DescriptorResult computeDescriptors(const Points& points,
                                     const Triangles& faces,
                                     const Points& normals,
                                     const std::vector<double>& radii,
-                                    const DescriptorConfig& config);
+                                    const DescriptorConfig& config,
+                                    double noise_sigma = 0.0);
 
 }  // namespace freeform_inspection

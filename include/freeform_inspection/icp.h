@@ -47,15 +47,6 @@ struct IcpResult {
   double fitness = 0.0;          ///< share of the used points within inlier_distance
 };
 
-/// @brief The scan's own noise along the surface normal [m], without any CAD: the median over
-/// up to `samples` evenly spread points of the RMS distance of their neighbours within `radius`
-/// (at least 16 neighbours) to the neighbours' least-squares plane, corrected for the 3 fitted
-/// degrees of freedom. The radius must be well above the noise (a neighbourhood no wider than
-/// the noise cannot see it): the pipeline uses 2 r_1. Curvature inside the neighbourhood adds to
-/// the estimate, so it errs high. Scans above 50,000 points are measured on an evenly spread
-/// subset of that many (the estimate does not depend on the density).
-double estimateScanNoise(const Points& points, double radius, std::size_t samples = 1000);
-
 /// @brief Refines `initial` by ICP.
 /// @param initial_cutoff [m] cut-off of the first iteration (the global stage's accuracy)
 IcpResult refinePose(const MeshQuery& cad,

@@ -18,6 +18,8 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"descriptor/cloud_neighbours", &config.descriptor.cloud_curvature.neighbours},
       {"descriptor/cloud_thinning_ratio", &config.descriptor.cloud_thinning_ratio},
       {"descriptor/max_analysed_points", &config.descriptor.max_analysed_points},
+      {"descriptor/noise_fit_multiple", &config.descriptor.noise_fit_multiple},
+      {"descriptor/max_cloud_neighbours", &config.descriptor.max_cloud_neighbours},
       {"features/rare_fraction", &config.features.rare_fraction},
       {"features/min_persistent_scales", &config.features.min_persistent_scales},
       {"features/separation_ratio", &config.features.separation_ratio},

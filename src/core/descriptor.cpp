@@ -18,17 +18,70 @@
 namespace freeform_inspection {
 namespace {
 
+// Median distance from a point to its `column`-th nearest neighbour (1: the nearest other),
+// over every 7th point.
+double tableDistance(const Points& points, const internal::NeighbourTable& table, int column) {
+  std::vector<double> distances;
+  for (std::size_t i = 0; column > 0 && column < table.k && i < points.size(); i += 7) {
+    const auto other = static_cast<std::size_t>(table.of(i)[column]);
+    distances.push_back(std::sqrt(internal::squaredDistance(points[i], points[other])));
+  }
+  if (distances.empty()) {
+    return 0.0;
+  }
+  const auto middle = distances.begin() + static_cast<std::ptrdiff_t>(distances.size() / 2);
+  std::nth_element(distances.begin(), middle, distances.end());
+  return *middle;
+}
+
+// Neighbours of the cloud curvature fit. A fit over a neighbourhood no wider than a few σ of
+// noise fits the noise: its normals turn at random and the curvature with them. The configured
+// k is raised until the neighbourhood's median radius reaches noise_fit_multiple · σ (the area
+// grows with k), within max_cloud_neighbours and a table of at most kMaxTableEntries. Only when
+// that radius is clearly wider than the configured one (kMinGrowth): on a full view of a thin
+// wall the noise estimate reads part of the wall's thickness (0.76 mm on the noise-free blade,
+// 1.2× the 24-neighbour radius), and a wider fit there only blurs the curvature.
+int fitNeighbours(const Points& points,
+                  const internal::NeighbourTable& table,
+                  double noise_sigma,
+                  const DescriptorConfig& config) {
+  constexpr std::size_t kMaxTableEntries = 8000000;  // 32 MB of indices
+  constexpr double kMinGrowth = 1.5;
+  const int configured = config.cloud_curvature.neighbours;
+  const double reach = tableDistance(points, table, configured - 1);
+  const double wanted = config.noise_fit_multiple * noise_sigma;
+  if (!(reach > 0.0) || !(wanted > kMinGrowth * reach) ||
+      config.max_cloud_neighbours <= configured) {
+    return configured;
+  }
+  const double grown = std::ceil(configured * (wanted / reach) * (wanted / reach));
+  const auto table_limit =
+      static_cast<double>(kMaxTableEntries / std::max<std::size_t>(points.size(), 1));
+  const double limit = std::min({static_cast<double>(config.max_cloud_neighbours),
+                                 table_limit,
+                                 static_cast<double>(points.size())});
+  return std::max(configured, static_cast<int>(std::min(grown, limit)));
+}
+
 // On clouds the k-nearest-neighbour table is computed once, wide enough for both the curvature
 // fit and the surface edges, and handed back in `table` for cloudEdges.
 CurvatureResult pointCurvature(const Points& points,
                                const Triangles& faces,
                                const Points& normals,
+                               double noise_sigma,
                                const DescriptorConfig& config,
-                               internal::NeighbourTable* table) {
+                               internal::NeighbourTable* table,
+                               int* neighbours) {
   if (faces.empty()) {
-    const int table_k =
-        std::max(config.cloud_curvature.neighbours, config.cloud_edge_neighbours + 1);
-    return internal::computeCloudCurvature(points, normals, config.cloud_curvature, table_k, table);
+    CloudCurvatureConfig fit = config.cloud_curvature;
+    const int table_k = std::max(fit.neighbours, config.cloud_edge_neighbours + 1);
+    if (noise_sigma > 0.0 && points.size() >= static_cast<std::size_t>(table_k)) {
+      *table = internal::nearestNeighbourTable(points, table_k);
+      fit.neighbours = fitNeighbours(points, *table, noise_sigma, config);
+    }
+    *neighbours = fit.neighbours;
+    return internal::computeCloudCurvature(
+        points, normals, fit, std::max(table_k, fit.neighbours), table);
   }
   const MeshAdjacency adjacency = buildMeshAdjacency(faces, points.size());
   return computeMeshCurvature(points, faces, adjacency, config.mesh_curvature);
@@ -145,20 +198,6 @@ void capAnalysed(const Points& points,
 
 // Median distance from a point to its nearest other point, from the neighbour table (column 0
 // is the point itself), over every 7th point.
-double tableSpacing(const Points& points, const internal::NeighbourTable& table) {
-  std::vector<double> nearest;
-  for (std::size_t i = 0; table.k > 1 && i < points.size(); i += 7) {
-    const auto other = static_cast<std::size_t>(table.of(i)[1]);
-    nearest.push_back(std::sqrt(internal::squaredDistance(points[i], points[other])));
-  }
-  if (nearest.empty()) {
-    return 0.0;
-  }
-  const auto middle = nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2);
-  std::nth_element(nearest.begin(), middle, nearest.end());
-  return *middle;
-}
-
 template <typename T>
 std::vector<T> select(const std::vector<T>& values, const std::vector<int>& indices) {
   std::vector<T> selected;
@@ -208,6 +247,12 @@ std::vector<std::string> validate(const DescriptorConfig& config) {
   if (config.cloud_curvature.neighbours < 6) {
     errors.push_back("descriptor.cloud_neighbours must be at least 6 (a quadric has 6 terms)");
   }
+  if (!(config.noise_fit_multiple >= 0.0 && std::isfinite(config.noise_fit_multiple))) {
+    errors.push_back("descriptor.noise_fit_multiple must be a finite value >= 0");
+  }
+  if (config.max_cloud_neighbours < 6) {
+    errors.push_back("descriptor.max_cloud_neighbours must be at least 6");
+  }
   return errors;
 }
 
@@ -230,7 +275,8 @@ DescriptorResult computeDescriptors(const Points& points,
                                     const Triangles& faces,
                                     const Points& normals,
                                     const std::vector<double>& radii,
-                                    const DescriptorConfig& config) {
+                                    const DescriptorConfig& config,
+                                    double noise_sigma) {
   DescriptorResult result;
   result.radii = radii;
   result.status = checkRadii(radii);
@@ -249,8 +295,13 @@ DescriptorResult computeDescriptors(const Points& points,
   const Points analysed_points = thinned ? select(points, result.analysed) : Points();
   const Points& surface = thinned ? analysed_points : points;
   internal::NeighbourTable table;
-  result.curvature = pointCurvature(
-      surface, faces, thinned ? select(normals, result.analysed) : normals, config, &table);
+  result.curvature = pointCurvature(surface,
+                                    faces,
+                                    thinned ? select(normals, result.analysed) : normals,
+                                    noise_sigma,
+                                    config,
+                                    &table,
+                                    &result.cloud_neighbours);
   result.status = result.curvature.status;
   if (!result.status.ok()) {
     return result;
@@ -259,7 +310,7 @@ DescriptorResult computeDescriptors(const Points& points,
   // blade: spacing ≈ r_1) would fall apart into islands no geodesic ball can grow over.
   const double edge_length =
       faces.empty()
-          ? std::max(radii.front(), config.cloud_edge_spacings * tableSpacing(surface, table))
+          ? std::max(radii.front(), config.cloud_edge_spacings * tableDistance(surface, table, 1))
           : 0.0;
   const std::vector<SurfaceEdge> edges =
       faces.empty()

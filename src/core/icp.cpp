@@ -6,10 +6,7 @@
 #include <cmath>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-
-#include "freeform_inspection/point_index.h"
 
 namespace freeform_inspection {
 namespace {
@@ -100,51 +97,6 @@ Eigen::Isometry3d pointToPointStep(const Pairs& pairs) {
 }
 
 }  // namespace
-
-double estimateScanNoise(const Points& all_points, double radius, std::size_t samples) {
-  constexpr int kNeighbours = 16;
-  // An evenly spread subset is indexed: a plane fit needs tens of neighbours, not the thousands a
-  // 1M-point scan has within the radius (indexing and sorting those took 1.4 s there).
-  constexpr std::size_t kIndexed = 50000;
-  Points subset;
-  if (all_points.size() > kIndexed) {
-    subset.reserve(kIndexed);
-    for (std::size_t j = 0; j < kIndexed; ++j) {
-      subset.push_back(all_points[j * all_points.size() / kIndexed]);
-    }
-  }
-  const Points& points = subset.empty() ? all_points : subset;
-  if (points.size() < 2 * kNeighbours || samples == 0) {
-    return 0.0;
-  }
-  const PointIndex index(points);
-  const std::size_t taken = std::min(samples, points.size());
-  std::vector<double> rms(taken, 0.0);
-  const auto count = static_cast<long>(taken);
-#pragma omp parallel for schedule(static)
-  for (long s = 0; s < count; ++s) {
-    const auto& query = points[static_cast<std::size_t>(s) * points.size() / taken];
-    std::vector<Neighbour> neighbours = index.within(query, radius);
-    if (neighbours.size() < static_cast<std::size_t>(kNeighbours)) {
-      neighbours = index.nearest(query, kNeighbours);
-    }
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& n : neighbours) {
-      mean += points[static_cast<std::size_t>(n.index)];
-    }
-    mean /= static_cast<double>(neighbours.size());
-    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-    for (const auto& n : neighbours) {
-      const Eigen::Vector3d d = points[static_cast<std::size_t>(n.index)] - mean;
-      covariance += d * d.transpose();
-    }
-    const double smallest =
-        std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues()[0]);
-    rms[static_cast<std::size_t>(s)] =
-        std::sqrt(smallest / static_cast<double>(neighbours.size() - 3));
-  }
-  return median(rms);
-}
 
 std::vector<std::string> validate(const IcpConfig& config) {
   std::vector<std::string> errors;

@@ -52,6 +52,8 @@ std::string descriptorCacheKey(const TriangleMesh& mesh, const DescriptorConfig&
   hash.add(config.max_analysed_points);
   hash.add(config.mesh_curvature.method);
   hash.add(config.cloud_curvature.neighbours);
+  hash.add(config.noise_fit_multiple);
+  hash.add(config.max_cloud_neighbours);
   return hash.hex();
 }
 

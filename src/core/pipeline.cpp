@@ -12,6 +12,7 @@
 
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/organized_mesh.h"
+#include "freeform_inspection/scan_noise.h"
 #include "freeform_inspection/surface_support.h"
 #include "freeform_inspection/view_hints.h"
 
@@ -286,7 +287,6 @@ void registerScan(const Model& model,
                              candidates,
                              config.registration.pair_tolerance_cells * cell));
 
-  result->scan_noise = estimateScanNoise(scan_points, 2.0 * cad.radii.front());
   result->surface_on_cad = surfaceOnCad(scan.graph,
                                         scan_points,
                                         model.query(),
@@ -365,12 +365,17 @@ void runStages(const Model& model,
   const bool range_image = scan.faces.empty() && scan.isOrganized();
   const ViewHints hints =
       range_image && scan.normals.empty() ? rangeImageViewHints(cleaned.scan) : ViewHints();
+  // The scan's own noise sizes the cloud curvature fit here and bounds the residual of an
+  // acceptable pose later (registerScan).
+  result->scan_noise =
+      estimateScanNoise(cleaned.scan.points, 2.0 * model.descriptors().radii.front());
   const DescriptorResult descriptors =
       computeDescriptors(cleaned.scan.points,
                          range_image ? Triangles() : cleaned.scan.faces,
                          hints.normals.empty() ? cleaned.scan.normals : hints.normals,
                          model.descriptors().radii,
-                         config.descriptor);
+                         config.descriptor,
+                         result->scan_noise);
   watch->lap("descriptors");
   result->status = descriptors.status;
   if (!result->status.ok()) {

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -312,6 +313,41 @@ TEST(Descriptor, NoiseRuinsOneRingCurvatureButTheDescriptorHolds) {
   }
 }
 
+// Noise of 2 % of the diagonal (σ ≈ 1.2 r_1) along the normals of a 30k-point sphere: 24
+// neighbours fit the noise. Given the measured noise, the fit grows (noise_fit_multiple) and the
+// descriptor comes back towards eq. 10 at every scale; without it (0) nothing changes.
+TEST(Descriptor, NoisyCloudFitGrowsWithTheMeasuredNoise) {
+  const TriangleMesh sphere = test::icosphere(kRadius, 5);
+  const auto radii = radiiFor(sphere.vertices);
+  const double sigma = 0.02 * computeBoundingBox(sphere.vertices).diagonal();
+  const SurfaceSample cloud = sampleSurface(sphere, 30000, kSeed, sigma);
+  const DescriptorResult plain =
+      computeDescriptors(cloud.points, {}, {}, radii, DescriptorConfig(), 0.0);
+  const DescriptorResult sized =
+      computeDescriptors(cloud.points, {}, {}, radii, DescriptorConfig(), sigma);
+  ASSERT_TRUE(plain.status.ok() && sized.status.ok());
+  EXPECT_EQ(plain.cloud_neighbours, 24);
+  EXPECT_GT(sized.cloud_neighbours, 4 * 24);
+  EXPECT_LE(sized.cloud_neighbours, DescriptorConfig().max_cloud_neighbours);
+  for (int k = 0; k < 6; ++k) {
+    const double expected = sphereValue(radii[static_cast<std::size_t>(k)]);
+    const auto all = [](std::size_t) { return true; };
+    const auto exact = [&](std::size_t) { return expected; };
+    const Error before = descriptorError(plain, cloud.points.size(), k, exact, all);
+    const Error after = descriptorError(sized, cloud.points.size(), k, exact, all);
+    std::printf("scale %d: median |V - eq. 10| %.4f with 24 neighbours, %.4f with %d\n",
+                k + 1,
+                before.median,
+                after.median,
+                sized.cloud_neighbours);
+    EXPECT_LT(after.median, 0.5 * before.median) << "scale " << k + 1;
+    EXPECT_LT(after.median, 0.02) << "scale " << k + 1;
+  }
+  DescriptorConfig off;
+  off.noise_fit_multiple = 0.0;
+  EXPECT_EQ(computeDescriptors(cloud.points, {}, {}, radii, off, sigma).cloud_neighbours, 24);
+}
+
 TEST(Descriptor, PartialSphereMatchesTheFullSphereAwayFromTheCut) {
   const TriangleMesh sphere = test::icosphere(kRadius, 5);
   const auto radii = radiiFor(sphere.vertices);  // the CAD's radii, also on the partial scan
@@ -420,10 +456,14 @@ TEST(DescriptorConfig, DefaultsValidateAndBadValuesAreNamed) {
   DescriptorConfig bad;
   bad.scales = 0;
   bad.cell_ratio = 2.0;
+  bad.noise_fit_multiple = -1.0;
+  bad.max_cloud_neighbours = 2;
   const auto errors = validate(bad);
-  ASSERT_EQ(errors.size(), 2u);
+  ASSERT_EQ(errors.size(), 4u);
   EXPECT_NE(errors[0].find("descriptor.scales"), std::string::npos);
   EXPECT_NE(errors[1].find("descriptor.cell_ratio"), std::string::npos);
+  EXPECT_NE(errors[2].find("descriptor.noise_fit_multiple"), std::string::npos);
+  EXPECT_NE(errors[3].find("descriptor.max_cloud_neighbours"), std::string::npos);
 }
 
 }  // namespace

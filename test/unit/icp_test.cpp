@@ -149,31 +149,6 @@ TEST(Icp, ScanFarFromTheCadIsALostSurfaceNotAPose) {
   EXPECT_NE(result.status.message.find("lost the surface"), std::string::npos);
 }
 
-// A square plate 0.2 m wide, sampled at random, with Gaussian noise σ along z.
-Points noisyPlate(std::size_t count, double sigma, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> along(0.0, 0.2);
-  std::normal_distribution<double> noise(0.0, sigma);
-  Points points;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double x = along(rng);
-    const double y = along(rng);
-    points.emplace_back(x, y, noise(rng));
-  }
-  return points;
-}
-
-TEST(ScanNoise, PlateNoiseIsMeasuredWhateverTheDensity) {
-  const double sigma = 0.0002;
-  // 20k points are all indexed; 400k are measured on a 50k subset: the same σ either way.
-  for (const std::size_t count : {std::size_t{20000}, std::size_t{400000}}) {
-    const double measured = estimateScanNoise(noisyPlate(count, sigma, 7), 0.005);
-    EXPECT_NEAR(measured, sigma, 0.05 * sigma) << count << " points, seed 7";
-  }
-  EXPECT_NEAR(estimateScanNoise(noisyPlate(20000, 0.0, 7), 0.005), 0.0, 1e-12);
-  EXPECT_EQ(estimateScanNoise(noisyPlate(10, sigma, 7), 0.005), 0.0);  // too few to fit planes
-}
-
 TEST(IcpConfig, ValidationNamesTheField) {
   IcpConfig config;
   EXPECT_TRUE(validate(config).empty());

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "freeform_inspection/scan_noise.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include "freeform_inspection/point_index.h"
+
+namespace freeform_inspection {
+namespace {
+
+constexpr int kMinNeighbours = 16;
+// A fit needs tens of neighbours, not the thousands a widened radius holds: at most this many,
+// evenly taken, are fitted.
+constexpr std::size_t kMaxFitted = 192;
+// An evenly spread subset is indexed: a 1M-point scan took 1.4 s to index and search in full.
+constexpr std::size_t kIndexed = 50000;
+
+double median(std::vector<double> values) {
+  if (values.empty()) {
+    return 0.0;
+  }
+  const auto middle = values.begin() + static_cast<long>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// RMS distance of `neighbours` to their least-squares quadric w = q(u, v) over the plane of
+// their principal spread, with 6 degrees of freedom removed; NaN when the fit is singular.
+double quadricResidual(const Points& points, const std::vector<Neighbour>& neighbours) {
+  const std::size_t stride = std::max<std::size_t>(1, neighbours.size() / kMaxFitted);
+  std::vector<Eigen::Vector3d> taken;
+  for (std::size_t j = 0; j < neighbours.size(); j += stride) {
+    taken.push_back(points[static_cast<std::size_t>(neighbours[j].index)]);
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : taken) {
+    mean += p;
+  }
+  mean /= static_cast<double>(taken.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& p : taken) {
+    covariance += (p - mean) * (p - mean).transpose();
+  }
+  // Eigenvalues ascending: column 0 is the normal, 1 and 2 span the plane.
+  const Eigen::Matrix3d frame =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
+  Eigen::Matrix<double, 6, 6> normal_matrix = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> right = Eigen::Matrix<double, 6, 1>::Zero();
+  std::vector<Eigen::Matrix<double, 6, 1>> rows(taken.size());
+  std::vector<double> heights(taken.size());
+  for (std::size_t j = 0; j < taken.size(); ++j) {
+    const Eigen::Vector3d local = frame.transpose() * (taken[j] - mean);
+    const double u = local[1];
+    const double v = local[2];
+    rows[j] << u * u, u * v, v * v, u, v, 1.0;
+    heights[j] = local[0];
+    normal_matrix += rows[j] * rows[j].transpose();
+    right += rows[j] * heights[j];
+  }
+  const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solver(normal_matrix);
+  if (solver.info() != Eigen::Success) {
+    return std::nan("");
+  }
+  const Eigen::Matrix<double, 6, 1> coefficients = solver.solve(right);
+  double squares = 0.0;
+  for (std::size_t j = 0; j < taken.size(); ++j) {
+    const double r = heights[j] - rows[j].dot(coefficients);
+    squares += r * r;
+  }
+  const double rms = std::sqrt(squares / static_cast<double>(taken.size() - 6));
+  return std::isfinite(rms) ? rms : std::nan("");
+}
+
+double measureAt(const Points& points,
+                 const PointIndex& index,
+                 double radius,
+                 std::size_t samples) {
+  const std::size_t taken = std::min(samples, points.size());
+  std::vector<double> rms(taken, std::nan(""));
+  const auto count = static_cast<long>(taken);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long s = 0; s < count; ++s) {
+    const auto& query = points[static_cast<std::size_t>(s) * points.size() / taken];
+    std::vector<Neighbour> neighbours = index.within(query, radius);
+    if (neighbours.size() < static_cast<std::size_t>(kMinNeighbours)) {
+      neighbours = index.nearest(query, kMinNeighbours);
+    }
+    rms[static_cast<std::size_t>(s)] = quadricResidual(points, neighbours);
+  }
+  rms.erase(std::remove_if(rms.begin(), rms.end(), [](double r) { return !std::isfinite(r); }),
+            rms.end());
+  return median(rms);
+}
+
+}  // namespace
+
+double estimateScanNoise(const Points& all_points, double radius, std::size_t samples) {
+  Points subset;
+  if (all_points.size() > kIndexed) {
+    subset.reserve(kIndexed);
+    for (std::size_t j = 0; j < kIndexed; ++j) {
+      subset.push_back(all_points[j * all_points.size() / kIndexed]);
+    }
+  }
+  const Points& points = subset.empty() ? all_points : subset;
+  if (points.size() < 2 * kMinNeighbours || samples == 0 || !(radius > 0.0)) {
+    return 0.0;
+  }
+  const PointIndex index(points);
+  const double sigma = measureAt(points, index, radius, samples);
+  // Once, not until it settles: on a full view of a walled part each wider ball reaches more of
+  // the opposite wall, and repeated widening ran away (1.3x the true σ after one step, 2.9x
+  // after three, on an ABB link at 1 % noise).
+  return sigma > 0.2 * radius ? measureAt(points, index, 6.0 * sigma, samples) : sigma;
+}
+
+}  // namespace freeform_inspection
