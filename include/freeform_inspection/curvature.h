@@ -35,6 +35,8 @@ struct CurvatureResult {
                                  ///< about the surface area
   Points normals;                ///< unit normal per point, oriented outward (area-weighted face
                                  ///< normals on meshes; estimated and oriented on clouds)
+  Points on_plane;  ///< clouds: each point moved along its normal onto the least-squares plane
+                    ///< of its neighbourhood, the noise averaged out (empty on meshes)
 };
 
 /// @brief Curvature of every vertex of a mesh (paper eq. 2 and eq. 3, or eq. 4–5).

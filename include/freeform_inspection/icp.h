@@ -47,6 +47,15 @@ struct IcpResult {
   double fitness = 0.0;          ///< share of the used points within inlier_distance
 };
 
+/// @brief The fit of `scan_points` at `pose` without moving it: robust σ of the residuals to the
+/// closest CAD points (up to max_cutoff_ratio · L away), the inlier distance (3σ, bounded), the
+/// inliers' RMS and their share of the points used (at most max_points, evenly spread).
+IcpResult measureFit(const MeshQuery& cad,
+                     const Points& scan_points,
+                     const Eigen::Isometry3d& pose,
+                     double cad_diagonal,
+                     const IcpConfig& config);
+
 /// @brief Refines `initial` by ICP.
 /// @param initial_cutoff [m] cut-off of the first iteration (the global stage's accuracy)
 IcpResult refinePose(const MeshQuery& cad,

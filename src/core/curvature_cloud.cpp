@@ -84,8 +84,13 @@ Status checkInput(const Points& points, const Points& normals, const CloudCurvat
   return Status::success();
 }
 
-// Smallest eigenvector of the neighbourhood covariance: the direction the neighbours vary least.
-Eigen::Vector3d pcaNormal(const Points& points, const int* neighbours, int k) {
+// Smallest eigenvector of the neighbourhood covariance (the direction the neighbours vary
+// least) and the neighbourhood's mean, which the least-squares plane passes through.
+struct PcaPlane {
+  Eigen::Vector3d normal;
+  Eigen::Vector3d mean;
+};
+PcaPlane pcaPlane(const Points& points, const int* neighbours, int k) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (int j = 0; j < k; ++j) {
     mean += points[std::size_t(neighbours[j])];
@@ -98,7 +103,7 @@ Eigen::Vector3d pcaNormal(const Points& points, const int* neighbours, int k) {
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
   solver.computeDirect(covariance);  // closed form: the smallest eigenvalue is well separated
-  return solver.eigenvectors().col(0).normalized();
+  return {solver.eigenvectors().col(0).normalized(), mean};
 }
 
 bool hasGivenNormal(const Points& normals, std::size_t point) {
@@ -112,15 +117,19 @@ bool hasGivenNormal(const Points& normals, std::size_t point) {
 Points initialNormals(const Points& points,
                       const Points& normals,
                       const Neighbourhoods& hoods,
-                      std::vector<char>& fixed) {
+                      std::vector<char>& fixed,
+                      Points& on_plane) {
   Points result(points.size());
+  on_plane.resize(points.size());
   fixed.assign(points.size(), 0);
   const auto count = static_cast<std::ptrdiff_t>(points.size());
 #pragma omp parallel for schedule(dynamic, 1024)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
     const auto point = static_cast<std::size_t>(i);
     fixed[point] = hasGivenNormal(normals, point) ? 1 : 0;
-    result[point] = pcaNormal(points, hoods.of(point), hoods.k);
+    const PcaPlane plane = pcaPlane(points, hoods.of(point), hoods.k);
+    result[point] = plane.normal;
+    on_plane[point] = points[point] - plane.normal * plane.normal.dot(points[point] - plane.mean);
     if (fixed[point] && result[point].dot(normals[point]) < 0.0) {
       result[point] = -result[point];
     }
@@ -465,7 +474,7 @@ CurvatureResult computeCloudCurvature(const Points& points,
   }
   const Neighbourhoods hoods{table, config.neighbours};
   std::vector<char> fixed;
-  result.normals = initialNormals(points, normals, hoods, fixed);
+  result.normals = initialNormals(points, normals, hoods, fixed, result.on_plane);
   orientNormals(points, hoods, fixed, result.normals);
   if (fitAllPoints(points, hoods, result) == 0) {
     result.status = Status::failure(StatusCode::kDegenerateInput,

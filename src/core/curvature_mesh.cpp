@@ -296,7 +296,7 @@ CurvatureResult computeMeshCurvature(const Points& vertices,
   }
   const Status adjacency_status = checkAdjacency(adjacency, n, faces.size());
   if (!adjacency_status.ok()) {
-    return CurvatureResult{adjacency_status, {}, {}, {}, {}};
+    return CurvatureResult{adjacency_status, {}, {}, {}, {}, {}};
   }
   addEdges(vertices, faces, adjacency, sums);
   for (std::size_t v = 0; v < n; ++v) {

@@ -119,6 +119,39 @@ std::vector<std::string> validate(const IcpConfig& config) {
   return errors;
 }
 
+IcpResult measureFit(const MeshQuery& cad,
+                     const Points& scan_points,
+                     const Eigen::Isometry3d& pose,
+                     double cad_diagonal,
+                     const IcpConfig& config) {
+  IcpResult result;
+  result.T_cad_scan = pose;
+  result.converged = true;
+  const Points points = evenSubset(scan_points, config.max_points);
+  const double floor = config.min_cutoff_ratio * cad_diagonal;
+  const double ceiling = config.max_cutoff_ratio * cad_diagonal;
+  // Inliers within 3σ (bounded), their RMS.
+  const Pairs pairs = match(cad, points, pose, ceiling, config.point_to_plane);
+  std::vector<double> magnitude(pairs.residual.size());
+  std::transform(pairs.residual.begin(), pairs.residual.end(), magnitude.begin(), [](double r) {
+    return std::abs(r);
+  });
+  result.sigma = 1.4826 * median(magnitude);
+  result.inlier_distance = std::clamp(config.sigma_multiple * result.sigma, floor, ceiling);
+  double sum = 0.0;
+  std::size_t inliers = 0;
+  for (const double m : magnitude) {
+    if (m <= result.inlier_distance) {
+      sum += m * m;
+      ++inliers;
+    }
+  }
+  result.rmse = inliers > 0 ? std::sqrt(sum / static_cast<double>(inliers)) : 0.0;
+  result.fitness =
+      points.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(points.size());
+  return result;
+}
+
 IcpResult refinePose(const MeshQuery& cad,
                      const Points& scan_points,
                      const Eigen::Isometry3d& initial,
@@ -168,24 +201,11 @@ IcpResult refinePose(const MeshQuery& cad,
     }
     previous_mse = mse;
   }
-  // Final fit on the same points: inliers within 3σ (bounded), their RMS.
-  const Pairs pairs = match(cad, points, result.T_cad_scan, ceiling, config.point_to_plane);
-  std::vector<double> magnitude(pairs.residual.size());
-  std::transform(pairs.residual.begin(), pairs.residual.end(), magnitude.begin(), [](double r) {
-    return std::abs(r);
-  });
-  result.sigma = 1.4826 * median(magnitude);
-  result.inlier_distance = std::clamp(config.sigma_multiple * result.sigma, floor, ceiling);
-  double sum = 0.0;
-  std::size_t inliers = 0;
-  for (const double m : magnitude) {
-    if (m <= result.inlier_distance) {
-      sum += m * m;
-      ++inliers;
-    }
-  }
-  result.rmse = inliers > 0 ? std::sqrt(sum / static_cast<double>(inliers)) : 0.0;
-  result.fitness = static_cast<double>(inliers) / static_cast<double>(points.size());
+  const IcpResult fit = measureFit(cad, points, result.T_cad_scan, cad_diagonal, config);
+  result.sigma = fit.sigma;
+  result.inlier_distance = fit.inlier_distance;
+  result.rmse = fit.rmse;
+  result.fitness = fit.fitness;
   if (!result.converged) {
     result.status = Status::failure(
         StatusCode::kNotConverged,

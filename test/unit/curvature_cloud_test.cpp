@@ -2,6 +2,7 @@
 // Copyright 2026 The freeform_inspection authors
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -143,6 +144,41 @@ TEST(CloudCurvature, PlaneHasZeroCurvature) {
     }
     EXPECT_LT(worst * side, 1e-9) << seedText(kSeed);
   }
+}
+
+// Each point moved onto its neighbourhood's plane: the noise along the normal averages out
+// (24 neighbours: about σ/√24 is left, plus the plane's own error), the position in the plane
+// is kept.
+TEST(CloudCurvature, PointsOnTheirNeighbourhoodPlaneLoseTheNoise) {
+  const double side = 0.2;
+  const double sigma = 0.001;
+  analytic::Cloud plane = analytic::samplePlane(side, 20000, kSeed);
+  std::mt19937 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  for (auto& p : plane.points) {
+    p.z() += noise(rng);
+  }
+  const CurvatureResult result = curvature(plane.points, Points());
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
+  ASSERT_EQ(result.on_plane.size(), plane.points.size());
+  double before = 0.0;
+  double after = 0.0;
+  double sideways = 0.0;
+  for (std::size_t i = 0; i < plane.points.size(); ++i) {
+    before += plane.points[i].z() * plane.points[i].z();
+    after += result.on_plane[i].z() * result.on_plane[i].z();
+    sideways += (result.on_plane[i] - plane.points[i]).head<2>().squaredNorm();
+  }
+  before = std::sqrt(before / static_cast<double>(plane.points.size()));
+  after = std::sqrt(after / static_cast<double>(plane.points.size()));
+  sideways = std::sqrt(sideways / static_cast<double>(plane.points.size()));
+  std::printf("RMS along the normal %.3f σ before, %.3f σ after; sideways %.3f σ\n",
+              before / sigma,
+              after / sigma,
+              sideways / sigma);
+  EXPECT_NEAR(before, sigma, 0.05 * sigma);
+  EXPECT_LT(after, 0.35 * sigma) << seedText(kSeed);
+  EXPECT_LT(sideways, 0.3 * sigma);  // RMS: moved along the (nearly vertical) normal only
 }
 
 TEST(CloudCurvature, SaddleHasZeroMeanCurvatureAtTheOriginAndMatchesEverywhere) {

@@ -110,6 +110,34 @@ TEST(Icp, NoiseDoesNotBiasThePoseAndIsMeasured) {
   EXPECT_NEAR(result.rmse, 0.986 * sigma, 0.03 * sigma);
 }
 
+// measureFit is refinePose's own final fit, at a pose it does not move: the same numbers at
+// the refined pose, and a worse fit at a pose shifted away from it.
+TEST(Icp, MeasureFitIsTheFitAtAGivenPose) {
+  const TriangleMesh mesh = part();
+  const MeshQuery cad(mesh);
+  const double sigma = 0.0002;
+  const Eigen::Isometry3d T_scan_cad =
+      perturbation(2.0, Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(0.001, 0.0, -0.001));
+  const Points scan = moved(sampleSurface(mesh, 20000, kSeed, sigma).points, T_scan_cad);
+  const IcpResult refined =
+      refinePose(cad, scan, Eigen::Isometry3d::Identity(), 0.02, diagonalOf(mesh), IcpConfig());
+  ASSERT_TRUE(refined.status.ok()) << refined.status.message;
+  const IcpResult at_pose =
+      measureFit(cad, scan, refined.T_cad_scan, diagonalOf(mesh), IcpConfig());
+  EXPECT_TRUE(at_pose.T_cad_scan.isApprox(refined.T_cad_scan, 0.0));
+  EXPECT_EQ(at_pose.iterations, 0);
+  EXPECT_DOUBLE_EQ(at_pose.sigma, refined.sigma);
+  EXPECT_DOUBLE_EQ(at_pose.inlier_distance, refined.inlier_distance);
+  EXPECT_DOUBLE_EQ(at_pose.rmse, refined.rmse);
+  EXPECT_DOUBLE_EQ(at_pose.fitness, refined.fitness);
+  const Eigen::Isometry3d shifted =
+      perturbation(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0.002, 0.0, 0.0)) *
+      refined.T_cad_scan;  // 2 mm = 10 σ
+  const IcpResult off = measureFit(cad, scan, shifted, diagonalOf(mesh), IcpConfig());
+  EXPECT_GT(off.sigma, 2.0 * refined.sigma);
+  EXPECT_LT(off.fitness, refined.fitness);
+}
+
 TEST(Icp, TrimmingIgnoresOutliersAndAPartThatIsNotInTheCad) {
   const TriangleMesh mesh = part();
   const MeshQuery cad(mesh);

@@ -4,10 +4,13 @@
 // scans at random poses (synthetic_scan.h) whose truth is known. Success as issue 4 defines it:
 // rotation error < 2°, error of the scan centroid < 1 % of the CAD diagonal L, status "ok".
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "test_shapes.h"
 #include <gtest/gtest.h>
@@ -129,6 +132,38 @@ TEST(Registration, SparseScansOfThreeThousandPoints) {
 TEST(Registration, CastLinkFullAndPartialViews) {
   expectRegistered(link(), caseConfig(5, 0.005, false, 0.0));
   expectRegistered(link(), caseConfig(6, 0.005, true, 0.0));
+}
+
+// Noise of 2 % of L (the paper's ±2 %; σ = 3.2 mm on the blade, thicker than most of it): the
+// curvature fit grows with the measured noise and ICP runs on the neighbourhood planes
+// (descriptors.md, registration.md). Before, no scan at 2 % registered. The fit's numbers are
+// the measured points': the 3σ trimming drops more than a Gaussian's tails here (noise pushes
+// points towards other faces), so the RMS reads 0.7-0.9 σ.
+TEST(Registration, TwoPercentNoiseFullViews) {
+  const std::vector<std::pair<const Model*, std::uint64_t>> cases = {
+      {&blade(), 21}, {&blade(), 22}, {&link(), 23}};
+  for (const auto& [model, seed] : cases) {
+    const SyntheticScanConfig config = caseConfig(seed, 0.02, false, 0.0);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const SyntheticScan truth = makeCase(*model, config);
+    const InspectionResult result = inspect(*model, truth.scan, PipelineConfig());
+    ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+    const double diagonal = model->bounds().diagonal();
+    const double sigma = config.noise_ratio * diagonal;
+    const PoseError error = poseError(result, truth, diagonal);
+    std::printf("seed %llu: %.3f deg, %.4f L, RMS %.3f σ, robust σ %.3f σ, scan noise %.3f σ\n",
+                static_cast<unsigned long long>(seed),
+                error.rotation_deg,
+                error.centroid_ratio,
+                result.rmse / sigma,
+                result.noise_sigma / sigma,
+                result.scan_noise / sigma);
+    EXPECT_LT(error.rotation_deg, 2.0);
+    EXPECT_LT(error.centroid_ratio, 0.01);
+    EXPECT_LE(result.rmse, 1.0 * sigma);
+    EXPECT_GT(result.rmse, 0.6 * sigma);
+    EXPECT_NEAR(result.scan_noise, sigma, 0.3 * sigma);
+  }
 }
 
 TEST(Registration, NoiseFreePartialScanIsExact) {
