@@ -68,5 +68,19 @@ TEST(ScanNoise, NoiseWiderThanTheRadiusWidensIt) {
   EXPECT_NEAR(measured, sigma, 0.12 * sigma);
 }
 
+// A thin wall: the two faces of a 2 mm plate 50 mm wide, 30k points a face (spacing 0.3 mm),
+// each face with 0.03 mm of noise. A 5 mm ball spans both faces and reads about half the
+// thickness (1 mm); the small first ball (32 neighbours, 0.7 mm) stays on one face.
+TEST(ScanNoise, AThinWallIsNotReadAsNoise) {
+  const double sigma = 0.00003;
+  Points wall;
+  for (const unsigned face : {9u, 10u}) {
+    for (const Eigen::Vector3d& p : noisyPlate(30000, sigma, face)) {
+      wall.emplace_back(0.25 * p.x(), 0.25 * p.y(), p.z() + (face == 10u ? 0.002 : 0.0));
+    }
+  }
+  EXPECT_NEAR(estimateScanNoise(wall, 0.005), sigma, 0.1 * sigma);
+}
+
 }  // namespace
 }  // namespace freeform_inspection
