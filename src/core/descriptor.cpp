@@ -8,8 +8,10 @@
 #include <limits>
 #include <numeric>
 #include <unordered_map>
+#include <utility>
 
 #include "cloud_neighbours_internal.h"
+#include "median_internal.h"
 
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/mesh_adjacency.h"
@@ -26,12 +28,7 @@ double tableDistance(const Points& points, const internal::NeighbourTable& table
     const auto other = static_cast<std::size_t>(table.of(i)[column]);
     distances.push_back(std::sqrt(internal::squaredDistance(points[i], points[other])));
   }
-  if (distances.empty()) {
-    return 0.0;
-  }
-  const auto middle = distances.begin() + static_cast<std::ptrdiff_t>(distances.size() / 2);
-  std::nth_element(distances.begin(), middle, distances.end());
-  return *middle;
+  return internal::median(std::move(distances));
 }
 
 // Neighbours of the cloud curvature fit. A fit over a neighbourhood no wider than a few σ of

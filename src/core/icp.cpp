@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "median_internal.h"
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
@@ -21,15 +22,6 @@ Points evenSubset(const Points& points, std::size_t count) {
     subset.push_back(points[i * points.size() / count]);
   }
   return subset;
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) {
-    return 0.0;
-  }
-  const auto middle = values.begin() + static_cast<long>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 struct Pairs {
@@ -136,7 +128,7 @@ IcpResult measureFit(const MeshQuery& cad,
   std::transform(pairs.residual.begin(), pairs.residual.end(), magnitude.begin(), [](double r) {
     return std::abs(r);
   });
-  result.sigma = 1.4826 * median(magnitude);
+  result.sigma = 1.4826 * internal::median(magnitude);
   result.inlier_distance = std::clamp(config.sigma_multiple * result.sigma, floor, ceiling);
   double sum = 0.0;
   std::size_t inliers = 0;
@@ -187,7 +179,7 @@ IcpResult refinePose(const MeshQuery& cad,
     std::transform(pairs.residual.begin(), pairs.residual.end(), magnitude.begin(), [](double r) {
       return std::abs(r);
     });
-    result.sigma = 1.4826 * median(magnitude);
+    result.sigma = 1.4826 * internal::median(magnitude);
     cutoff = std::clamp(std::min(cutoff, config.sigma_multiple * result.sigma), floor, ceiling);
     // eq. 15 (relative change of the mean squared error), or a step too small to matter: on
     // noise-free data the error keeps halving long after the pose has stopped moving.

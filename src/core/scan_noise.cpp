@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "median_internal.h"
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
@@ -22,15 +23,6 @@ constexpr std::size_t kMaxFitted = 192;
 constexpr std::size_t kIndexed = 50000;
 constexpr int kFirstNeighbours = 32;
 constexpr int kWidenings = 3;
-
-double median(std::vector<double> values) {
-  if (values.empty()) {
-    return 0.0;
-  }
-  const auto middle = values.begin() + static_cast<long>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 // RMS distance of `neighbours` to their least-squares quadric w = q(u, v) over the plane of
 // their principal spread, with 6 degrees of freedom removed; NaN when the fit is singular.
@@ -94,7 +86,7 @@ double firstRadius(const Points& points,
     reach[static_cast<std::size_t>(s)] =
         std::sqrt(index.nearest(query, kFirstNeighbours).back().squared_distance);
   }
-  return std::min(radius, median(reach));
+  return std::min(radius, internal::median(reach));
 }
 
 double measureAt(const Points& points,
@@ -115,7 +107,7 @@ double measureAt(const Points& points,
   }
   rms.erase(std::remove_if(rms.begin(), rms.end(), [](double r) { return !std::isfinite(r); }),
             rms.end());
-  return median(rms);
+  return internal::median(rms);
 }
 
 }  // namespace
