@@ -35,9 +35,10 @@ double tableDistance(const Points& points, const internal::NeighbourTable& table
 // noise fits the noise: its normals turn at random and the curvature with them. The configured
 // k is raised until the neighbourhood's median radius reaches noise_fit_multiple · σ (the area
 // grows with k), within max_cloud_neighbours and a table of at most kMaxTableEntries. Only when
-// that radius is clearly wider than the configured one (kMinGrowth): on a full view of a thin
-// wall the noise estimate reads part of the wall's thickness (0.76 mm on the noise-free blade,
-// 1.2× the 24-neighbour radius), and a wider fit there only blurs the curvature.
+// that radius is clearly wider than the configured one (kMinGrowth): on full views of thin or
+// walled parts the noise estimate still reads high (1.54x on the blade at 0.5 %), and a wider
+// fit there only blurs the curvature. It was set when the estimate read 0.76 mm on the
+// noise-free blade; the two-start estimate reads ~0 there, see docs/descriptors.md.
 int fitNeighbours(const Points& points,
                   const internal::NeighbourTable& table,
                   double noise_sigma,
