@@ -97,6 +97,21 @@ double verificationScore(const Eigen::Isometry3d& T_cad_scan,
                          double truncation,
                          double normal_tolerance_deg);
 
+/// @brief Per point of the set, its term of verificationScore() (0 where the pose does not
+/// explain it).
+std::vector<double> verificationTerms(const Eigen::Isometry3d& T_cad_scan,
+                                      const VerificationSet& set,
+                                      const MeshQuery& cad,
+                                      double truncation,
+                                      double normal_tolerance_deg);
+
+/// @brief Whether the scan itself tells pose `a` from pose `b` (terms from verificationTerms()):
+/// the points only `a` explains are at least 1 % of all, outnumber those only `b` explains at
+/// least twice, and by three standard deviations of a coin toss between the two (a sign test).
+/// A symmetric part's twins explain the same points but for the noise; the twin of a
+/// near-symmetric part that the view does tell apart leaves the differing feature unexplained.
+bool scanPrefers(const std::vector<double>& a, const std::vector<double>& b);
+
 /// @brief True when two poses differ by more than `angle_deg` or move `reference` (scan frame)
 /// by more than `distance`.
 bool distinctPoses(const Eigen::Isometry3d& a,

@@ -193,18 +193,15 @@ VerificationSet makeVerificationSet(const SurfaceGraph& scan, std::size_t count,
   return set;
 }
 
-double verificationScore(const Eigen::Isometry3d& T_cad_scan,
-                         const VerificationSet& set,
-                         const MeshQuery& cad,
-                         double truncation,
-                         double normal_tolerance_deg) {
-  if (set.points.empty()) {
-    return 0.0;
-  }
+std::vector<double> verificationTerms(const Eigen::Isometry3d& T_cad_scan,
+                                      const VerificationSet& set,
+                                      const MeshQuery& cad,
+                                      double truncation,
+                                      double normal_tolerance_deg) {
   // Serial: callers score many poses in parallel instead (one parallel region per batch of
   // poses, not per pose, so a busy core does not stall every call).
   const double min_cos = std::cos(normal_tolerance_deg * kDegree);
-  double sum = 0.0;
+  std::vector<double> terms(set.points.size(), 0.0);
   for (std::size_t i = 0; i < set.points.size(); ++i) {
     const ClosestPoint closest = cad.closest(T_cad_scan * set.points[i], truncation);
     if (!closest.found) {
@@ -216,9 +213,40 @@ double verificationScore(const Eigen::Isometry3d& T_cad_scan,
     if (hasNormal(normal) && agreement < min_cos) {
       continue;
     }
-    sum += 1.0 - std::pow(closest.distance / truncation, 2);
+    terms[i] = 1.0 - std::pow(closest.distance / truncation, 2);
+  }
+  return terms;
+}
+
+double verificationScore(const Eigen::Isometry3d& T_cad_scan,
+                         const VerificationSet& set,
+                         const MeshQuery& cad,
+                         double truncation,
+                         double normal_tolerance_deg) {
+  if (set.points.empty()) {
+    return 0.0;
+  }
+  double sum = 0.0;
+  for (const double term :
+       verificationTerms(T_cad_scan, set, cad, truncation, normal_tolerance_deg)) {
+    sum += term;
   }
   return sum / static_cast<double>(set.points.size());
+}
+
+bool scanPrefers(const std::vector<double>& a, const std::vector<double>& b) {
+  constexpr double kMinRatio = 2.0;
+  constexpr double kSigmas = 3.0;
+  constexpr double kMinShare = 0.01;  // of the points: a feature, not a few stray ones
+  const std::size_t count = std::min(a.size(), b.size());
+  double only_a = 0.0;
+  double only_b = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    only_a += a[i] > 0.0 && !(b[i] > 0.0) ? 1.0 : 0.0;
+    only_b += b[i] > 0.0 && !(a[i] > 0.0) ? 1.0 : 0.0;
+  }
+  return only_a > 0.0 && only_a >= kMinShare * static_cast<double>(count) &&
+         only_a >= kMinRatio * only_b && only_a - only_b >= kSigmas * std::sqrt(only_a + only_b);
 }
 
 bool distinctPoses(const Eigen::Isometry3d& a,

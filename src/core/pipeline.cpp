@@ -331,11 +331,32 @@ void registerScan(const Model& model,
     result->rmse = std::numeric_limits<double>::quiet_NaN();
     return;
   }
-  // Another distinct pose that explains the scan about as well: say so, with all of them.
+  // Another distinct pose that explains the scan about as well: say so, with all of them,
+  // unless the points the two explain differently side clearly with the best (scanPrefers).
+  // The rival is refined as fully as the best first, so that no edge in refinement decides;
+  // and the points are counted within 3 σ of the scan's own noise, not of the best pose's
+  // residual: a twin that is only roughly aligned (a camera view of the blade turned by 178°,
+  // residual 96 σ) must not explain the scan at its own loose tolerance.
+  const double evidence =
+      std::clamp(config.icp.sigma_multiple * result->scan_noise, 0.25 * cell, coarse_truncation);
+  const auto termsAt = [&](const Eigen::Isometry3d& pose) {
+    return verificationTerms(
+        pose, set, model.query(), evidence, config.registration.normal_tolerance_deg);
+  };
+  const std::vector<double> best_terms = termsAt(result->T_cad_scan);
   for (std::size_t c = 0; c < contenders.size(); ++c) {
-    if (c != best && fine_scores[c] >= config.registration.ambiguity_ratio * fine_scores[best] &&
-        distinctPoses(result->T_cad_scan, contenders[c].T_cad_scan, reference, 10.0, 3.0 * cell)) {
-      result->alternatives.push_back(contenders[c].T_cad_scan);
+    if (c == best || fine_scores[c] < config.registration.ambiguity_ratio * fine_scores[best] ||
+        !distinctPoses(result->T_cad_scan, contenders[c].T_cad_scan, reference, 10.0, 3.0 * cell)) {
+      continue;
+    }
+    const IcpResult rival = refine(contenders[c].T_cad_scan);
+    // A rival that refinement brought onto the best pose is compared as it was found.
+    const bool refined =
+        (rival.status.ok() || rival.status.code == StatusCode::kNotConverged) &&
+        distinctPoses(result->T_cad_scan, rival.T_cad_scan, reference, 10.0, 3.0 * cell);
+    const Eigen::Isometry3d& rival_pose = refined ? rival.T_cad_scan : contenders[c].T_cad_scan;
+    if (!scanPrefers(best_terms, termsAt(rival_pose))) {
+      result->alternatives.push_back(rival_pose);
     }
   }
   if (!result->alternatives.empty()) {

@@ -3,6 +3,7 @@
 // The whole registration (features → candidates → triplets → verification → ICP) on generated
 // scans at random poses (synthetic_scan.h) whose truth is known. Success as issue 4 defines it:
 // rotation error < 2°, error of the scan centroid < 1 % of the CAD diagonal L, status "ok".
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -16,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include "freeform_inspection/global_registration.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
 #include "freeform_inspection/synthetic_scan.h"
@@ -26,6 +28,7 @@ namespace {
 const std::string kBlade = std::string(FREEFORM_DATA_DIR) + "/blade/blade.stl";
 const std::string kLink =
     std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/kuka_kr10r900_2_link_4.stl";
+const std::string kFlange = std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/abb_irb6640_link_6.stl";
 
 std::shared_ptr<const Model> load(const std::string& path, double scale) {
   const ModelLoadResult loaded = loadModel(path, scale, "test");
@@ -232,6 +235,86 @@ TEST(Registration, SymmetricPartIsNeverAConfidentWrongPose) {
     }
   }
   EXPECT_GE(ambiguous, 1) << "a box must be reported ambiguous at least sometimes";
+}
+
+// Terms of verificationScore() for `count` points: each explained (a term in (0, 1]) with
+// probability `explained`, from a fixed seed.
+std::vector<double> randomTerms(std::size_t count, double explained, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> terms(count, 0.0);
+  for (double& term : terms) {
+    term = unit(rng) < explained ? 0.05 + 0.95 * unit(rng) : 0.0;
+  }
+  return terms;
+}
+
+// Terms of two poses over 1,500 points that both explain but for `only_a` points that only
+// the first explains and `only_b` that only the second does.
+std::pair<std::vector<double>, std::vector<double>> differing(std::size_t only_a,
+                                                              std::size_t only_b) {
+  std::vector<double> a(1500, 0.5);
+  std::vector<double> b(1500, 0.5);
+  std::fill_n(b.begin(), only_a, 0.0);
+  std::fill_n(a.begin() + static_cast<std::ptrdiff_t>(only_a), only_b, 0.0);
+  return {a, b};
+}
+
+TEST(Registration, ScanPrefersOnlyAPoseThatExplainsClearlyMore) {
+  // Twins of a symmetric part: each explains ~96 % of the 1,500 points, different ones by
+  // chance. No seed may make either preferred.
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    const std::vector<double> a = randomTerms(1500, 0.96, seed);
+    const std::vector<double> b = randomTerms(1500, 0.96, 1000 + seed);
+    EXPECT_FALSE(scanPrefers(a, b)) << "seed " << seed;
+    EXPECT_FALSE(scanPrefers(b, a)) << "seed " << seed;
+  }
+  // The same twin with 60 points of a feature only the right pose explains (a flange's bolt
+  // holes that are not evenly spaced): 4 % of the scan.
+  std::vector<double> right = randomTerms(1500, 0.96, 7);
+  std::vector<double> turned = right;
+  for (std::size_t i = 0; i < 60; ++i) {
+    right[i] = 0.8;
+    turned[i] = 0.0;
+  }
+  EXPECT_TRUE(scanPrefers(right, turned));
+  EXPECT_FALSE(scanPrefers(turned, right));
+  // Significant as a coin toss (100 against 60: 3.2 σ) but not twice as many: no preference.
+  EXPECT_FALSE(scanPrefers(differing(100, 60).first, differing(100, 60).second));
+  // Exact twins (a box turned by 180°, both poses refined): nothing to tell them apart.
+  EXPECT_FALSE(scanPrefers(differing(0, 0).first, differing(0, 0).second));
+  // 14 against none is 3.7 σ, but under 1 % of the 1,500 points: a few stray points.
+  EXPECT_FALSE(scanPrefers(differing(14, 0).first, differing(14, 0).second));
+  // Twice as many but only 12 against 6 (1.4 σ): chance, no preference.
+  EXPECT_FALSE(scanPrefers(differing(12, 6).first, differing(12, 6).second));
+  // 30 against none (2 % of the points, 5.5 σ): preferred.
+  EXPECT_TRUE(scanPrefers(differing(30, 0).first, differing(30, 0).second));
+}
+
+TEST(Registration, NearSymmetricFlangeIsToldApartWhenTheScanShowsTheDifference) {
+  // The ABB flange turned by 120° lies on itself but for 8 % of its surface. A full scan shows
+  // that part, and where it clearly sides with one pose that pose is "ok"; where it does not,
+  // the result stays ambiguous. Never "ok" with a turned pose.
+  const auto flange = load(kFlange, 1.0);
+  ASSERT_TRUE(flange);
+  int ok = 0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const SyntheticScan truth = makeCase(*flange, caseConfig(seed, 0.005, false, 0.0));
+    const InspectionResult result = inspect(*flange, truth.scan, PipelineConfig());
+    const PoseError error = poseError(result, truth, flange->bounds().diagonal());
+    std::printf("flange seed %d: %s, %.2f deg\n",
+                static_cast<int>(seed),
+                toString(result.registration),
+                error.rotation_deg);
+    if (result.registration == RegistrationStatus::kOk) {
+      ++ok;
+      EXPECT_LT(error.rotation_deg, 2.0) << "seed " << seed << ": a turned flange reported as ok";
+      EXPECT_LT(error.centroid_ratio, 0.01) << "seed " << seed;
+    } else {
+      EXPECT_EQ(result.registration, RegistrationStatus::kAmbiguous) << result.status.message;
+    }
+  }
+  EXPECT_GE(ok, 1) << "the scan shows the flange's asymmetry: at least one view must say so";
 }
 
 TEST(Registration, ScanOfAnotherPartIsNotRegistered) {
