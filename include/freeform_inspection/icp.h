@@ -45,6 +45,9 @@ struct IcpResult {
   double inlier_distance = 0.0;  ///< [m] final cut-off
   double rmse = 0.0;             ///< [m] RMS distance of the inliers
   double fitness = 0.0;          ///< share of the used points within inlier_distance
+
+  /// True when T_cad_scan is a refined pose: converged, or stopped at the iteration limit.
+  bool usable() const { return status.ok() || status.code == StatusCode::kNotConverged; }
 };
 
 /// @brief The fit of `scan_points` at `pose` without moving it: robust σ of the residuals to the

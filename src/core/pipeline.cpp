@@ -81,8 +81,7 @@ RefinedPose refineQuickly(const Model& model,
   quick.max_iterations = std::min(quick.max_iterations, 15);
   const IcpResult icp =
       refinePose(model.query(), set.points, pose, truncation, model.bounds().diagonal(), quick);
-  const Eigen::Isometry3d refined =
-      icp.status.ok() || icp.status.code == StatusCode::kNotConverged ? icp.T_cad_scan : pose;
+  const Eigen::Isometry3d refined = icp.usable() ? icp.T_cad_scan : pose;
   return {refined,
           verificationScore(
               refined, set, model.query(), truncation, config.registration.normal_tolerance_deg)};
@@ -239,8 +238,7 @@ void registerScan(const Model& model,
                                         coarse_truncation,
                                         diagonal,
                                         config.icp);
-    if (on_planes &&
-        (refined_pose.status.ok() || refined_pose.status.code == StatusCode::kNotConverged)) {
+    if (on_planes && refined_pose.usable()) {
       const IcpResult measured =
           measureFit(model.query(), scan_points, refined_pose.T_cad_scan, diagonal, config.icp);
       refined_pose.sigma = measured.sigma;
@@ -272,7 +270,7 @@ void registerScan(const Model& model,
     fine_scores[best] = std::max(fine_scores[best], fineScore(icp.T_cad_scan));
   }
   watch.lap("icp");
-  if (!icp.status.ok() && icp.status.code != StatusCode::kNotConverged) {
+  if (!icp.usable()) {
     result->status = icp.status;
     return;
   }
@@ -343,7 +341,7 @@ void registerScan(const Model& model,
     return verificationTerms(
         pose, set, model.query(), evidence, config.registration.normal_tolerance_deg);
   };
-  const std::vector<double> best_terms = termsAt(result->T_cad_scan);
+  std::vector<double> best_terms;  // only when a rival needs them
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     if (c == best || fine_scores[c] < config.registration.ambiguity_ratio * fine_scores[best] ||
         !distinctPoses(result->T_cad_scan, contenders[c].T_cad_scan, reference, 10.0, 3.0 * cell)) {
@@ -352,9 +350,12 @@ void registerScan(const Model& model,
     const IcpResult rival = refine(contenders[c].T_cad_scan);
     // A rival that refinement brought onto the best pose is compared as it was found.
     const bool refined =
-        (rival.status.ok() || rival.status.code == StatusCode::kNotConverged) &&
+        rival.usable() &&
         distinctPoses(result->T_cad_scan, rival.T_cad_scan, reference, 10.0, 3.0 * cell);
     const Eigen::Isometry3d& rival_pose = refined ? rival.T_cad_scan : contenders[c].T_cad_scan;
+    if (best_terms.empty()) {
+      best_terms = termsAt(result->T_cad_scan);
+    }
     if (!scanPrefers(best_terms, termsAt(rival_pose))) {
       result->alternatives.push_back(rival_pose);
     }

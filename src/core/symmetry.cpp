@@ -107,8 +107,7 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
       continue;
     }
     const IcpResult icp = refinePose(query, set.points, start, truncation, diagonal, config_icp);
-    const Eigen::Isometry3d S =
-        icp.status.ok() || icp.status.code == StatusCode::kNotConverged ? icp.T_cad_scan : start;
+    const Eigen::Isometry3d S = icp.usable() ? icp.T_cad_scan : start;
     refined[static_cast<std::size_t>(i)] = {
         S, verificationScore(S, set, query, truncation, config.normal_tolerance_deg)};
   }
