@@ -153,6 +153,7 @@ const std::vector<std::string>& oursStages() {
                                                   "correspondences",
                                                   "global_registration",
                                                   "icp",
+                                                  "verification",
                                                   "deviation"};
   return stages;
 }

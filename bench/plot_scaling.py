@@ -21,7 +21,7 @@ SERIES = [
     ("ours: descriptors", "ours", ["descriptors"], (86, 180, 233), False),
     ("ours: features + global", "ours",
      ["features", "correspondences", "global_registration"], (0, 158, 115), False),
-    ("ours: ICP", "ours", ["icp"], (120, 120, 120), False),
+    ("ours: ICP + verification", "ours", ["icp", "verification"], (120, 120, 120), False),
     ("PCL: total", "pcl", None, (213, 94, 0), True),
     ("PCL: normals + FPFH", "pcl", ["voxel_grid", "normals", "fpfh"], (230, 159, 0), True),
     ("PCL: SAC", "pcl", ["sac"], (204, 121, 167), True),

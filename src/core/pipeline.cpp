@@ -274,6 +274,11 @@ void registerScan(const Model& model,
     result->status = icp.status;
     return;
   }
+  // Does the pose explain the scan, and does no other pose explain it as well? For a part with
+  // many near-twins (a flange with bolt holes) this refines every rival fully: seconds, timed.
+  if (!watch.proceed("verification", 0.8)) {
+    return;
+  }
   if (!icp.converged) {
     result->warnings.push_back(icp.status.message);
   }
@@ -327,6 +332,7 @@ void registerScan(const Model& model,
     // message and diagnostics.
     result->T_cad_scan = Eigen::Isometry3d::Identity();
     result->rmse = std::numeric_limits<double>::quiet_NaN();
+    watch.lap("verification");
     return;
   }
   // Another distinct pose that explains the scan about as well: say so, with all of them,
@@ -360,6 +366,7 @@ void registerScan(const Model& model,
       result->alternatives.push_back(rival_pose);
     }
   }
+  watch.lap("verification");
   if (!result->alternatives.empty()) {
     result->registration = RegistrationStatus::kAmbiguous;
     result->status = Status::failure(

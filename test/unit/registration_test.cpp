@@ -207,6 +207,7 @@ TEST(Registration, ReportsCountsAndEveryStageTiming) {
                                              "correspondences",
                                              "global_registration",
                                              "icp",
+                                             "verification",
                                              "deviation",
                                              "total"};
   EXPECT_EQ(stages, expected);
