@@ -307,6 +307,15 @@ TEST(Registration, NearSymmetricFlangeIsToldApartWhenTheScanShowsTheDifference) 
                 static_cast<int>(seed),
                 toString(result.registration),
                 error.rotation_deg);
+    // Every stage is timed, the rivals' refinement included: the stages add up to the total
+    // (what is left is bookkeeping between stages).
+    double stages = 0.0;
+    for (std::size_t t = 0; t + 1 < result.timings.size(); ++t) {
+      stages += result.timings[t].seconds;
+    }
+    ASSERT_FALSE(result.timings.empty());
+    EXPECT_NEAR(stages, result.timings.back().seconds, 0.02 + 0.02 * result.timings.back().seconds)
+        << "seed " << seed;
     if (result.registration == RegistrationStatus::kOk) {
       ++ok;
       EXPECT_LT(error.rotation_deg, 2.0) << "seed " << seed << ": a turned flange reported as ok";
