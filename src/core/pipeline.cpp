@@ -275,7 +275,8 @@ void registerScan(const Model& model,
     return;
   }
   // Does the pose explain the scan, and does no other pose explain it as well? For a part with
-  // many near-twins (a flange with bolt holes) this refines every rival fully: seconds, timed.
+  // many near-twins (a flange with bolt holes) the scan may side against every rival, and each
+  // is then refined fully: up to seconds, so it is a stage of its own.
   if (!watch.proceed("verification", 0.8)) {
     return;
   }
