@@ -365,14 +365,15 @@ void registerScan(const Model& model,
       result->alternatives.push_back(contenders[c].T_cad_scan);
       continue;
     }
+    // The scan sides against the rival as found; it stays beaten unless its full refinement,
+    // landing apart from the best, explains the scan as well. A rival that refinement brought
+    // onto the best pose keeps the verdict it had as found, already taken above.
     const IcpResult rival = refine(contenders[c].T_cad_scan);
-    // A rival that refinement brought onto the best pose is compared as it was found.
     const bool refined =
         rival.usable() &&
         distinctPoses(result->T_cad_scan, rival.T_cad_scan, reference, 10.0, 3.0 * cell);
-    const Eigen::Isometry3d& rival_pose = refined ? rival.T_cad_scan : contenders[c].T_cad_scan;
-    if (!scanPrefers(best_terms, termsAt(rival_pose))) {
-      result->alternatives.push_back(rival_pose);
+    if (refined && !scanPrefers(best_terms, termsAt(rival.T_cad_scan))) {
+      result->alternatives.push_back(rival.T_cad_scan);
     }
   }
   watch.lap("verification");
