@@ -120,6 +120,14 @@ bool distinctPoses(const Eigen::Isometry3d& a,
                    double angle_deg,
                    double distance);
 
+/// @brief The poses a result lists apart (its contenders and alternatives, a model's
+/// symmetries): more than 10° or 3 cells of `cell_size` apart at `reference`. Finer differences
+/// are one pose that ICP has not finished moving.
+bool separatePoses(const Eigen::Isometry3d& a,
+                   const Eigen::Isometry3d& b,
+                   const Eigen::Vector3d& reference,
+                   double cell_size);
+
 /// @brief Features whose centre, moved by the pose, lies within `tolerance` [m] of one of their
 /// CAD candidates: the correspondences the pose confirms.
 int countExplainedFeatures(const Eigen::Isometry3d& T_cad_scan,

@@ -259,6 +259,13 @@ bool distinctPoses(const Eigen::Isometry3d& a,
          (a * reference - b * reference).norm() > distance;
 }
 
+bool separatePoses(const Eigen::Isometry3d& a,
+                   const Eigen::Isometry3d& b,
+                   const Eigen::Vector3d& reference,
+                   double cell_size) {
+  return distinctPoses(a, b, reference, 10.0, 3.0 * cell_size);
+}
+
 GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
                                           const SurfaceGraph& cad,
                                           const CorrespondenceResult& candidates,

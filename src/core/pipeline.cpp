@@ -219,7 +219,7 @@ void registerScan(const Model& model,
   std::vector<RefinedPose> contenders;
   for (const RefinedPose& pose : refined) {
     const bool apart = std::all_of(contenders.begin(), contenders.end(), [&](const RefinedPose& c) {
-      return distinctPoses(c.T_cad_scan, pose.T_cad_scan, reference, 10.0, 3.0 * cell);
+      return separatePoses(c.T_cad_scan, pose.T_cad_scan, reference, cell);
     });
     if (apart && pose.score >= 0.8 * refined.front().score) {
       contenders.push_back(pose);
@@ -351,7 +351,7 @@ void registerScan(const Model& model,
   std::vector<double> best_terms;  // only when a rival needs them
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     if (c == best || fine_scores[c] < config.registration.ambiguity_ratio * fine_scores[best] ||
-        !distinctPoses(result->T_cad_scan, contenders[c].T_cad_scan, reference, 10.0, 3.0 * cell)) {
+        !separatePoses(result->T_cad_scan, contenders[c].T_cad_scan, reference, cell)) {
       continue;
     }
     if (best_terms.empty()) {
@@ -370,8 +370,7 @@ void registerScan(const Model& model,
     // onto the best pose keeps the verdict it had as found, already taken above.
     const IcpResult rival = refine(contenders[c].T_cad_scan);
     const bool refined =
-        rival.usable() &&
-        distinctPoses(result->T_cad_scan, rival.T_cad_scan, reference, 10.0, 3.0 * cell);
+        rival.usable() && separatePoses(result->T_cad_scan, rival.T_cad_scan, reference, cell);
     if (refined && !scanPrefers(best_terms, termsAt(rival.T_cad_scan))) {
       result->alternatives.push_back(rival.T_cad_scan);
     }

@@ -103,7 +103,7 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
 #pragma omp parallel for schedule(dynamic, 1)
   for (long i = 0; i < count; ++i) {
     const Eigen::Isometry3d& start = starts[static_cast<std::size_t>(i)];
-    if (!distinctPoses(identity, start, reference, 10.0, 3.0 * cell_size)) {
+    if (!separatePoses(identity, start, reference, cell_size)) {
       continue;
     }
     const IcpResult icp = refinePose(query, set.points, start, truncation, diagonal, config_icp);
@@ -112,9 +112,9 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
         S, verificationScore(S, set, query, truncation, config.normal_tolerance_deg)};
   }
   for (const Symmetry& candidate : refined) {
-    const bool is_new = distinctPoses(identity, candidate.S, reference, 10.0, 3.0 * cell_size) &&
+    const bool is_new = separatePoses(identity, candidate.S, reference, cell_size) &&
                         std::all_of(symmetries.begin(), symmetries.end(), [&](const Symmetry& s) {
-                          return distinctPoses(s.S, candidate.S, reference, 10.0, 3.0 * cell_size);
+                          return separatePoses(s.S, candidate.S, reference, cell_size);
                         });
     if (candidate.score >= min_score && is_new) {
       symmetries.push_back(candidate);

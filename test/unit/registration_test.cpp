@@ -292,6 +292,31 @@ TEST(Registration, ScanPrefersOnlyAPoseThatExplainsClearlyMore) {
   EXPECT_TRUE(scanPrefers(differing(30, 0).first, differing(30, 0).second));
 }
 
+TEST(Registration, PosesAreListedApartBeyondTenDegreesOrThreeCells) {
+  constexpr double kDegree = 3.14159265358979323846 / 180.0;
+  const double cell = 0.002;  // [m]
+  const Eigen::Vector3d reference(0.3, -0.1, 0.5);
+  const Eigen::Isometry3d pose = Eigen::Translation3d(0.05, 0.2, -0.4) *
+                                 Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
+  // Turned about the reference (it does not move): only the angle counts.
+  const auto turned = [&](double degrees) {
+    const Eigen::Vector3d at = pose * reference;
+    return Eigen::Translation3d(at) *
+           Eigen::AngleAxisd(degrees * kDegree, Eigen::Vector3d::UnitZ()) *
+           Eigen::Translation3d(-at) * pose;
+  };
+  EXPECT_FALSE(separatePoses(pose, turned(9.9), reference, cell));
+  EXPECT_TRUE(separatePoses(pose, turned(10.1), reference, cell));
+  EXPECT_TRUE(separatePoses(turned(-10.1), pose, reference, cell));
+  // Shifted without turning: only the reference's displacement counts.
+  const auto shifted = [&](double cells) {
+    return Eigen::Translation3d(Eigen::Vector3d(0.0, cells * cell, 0.0)) * pose;
+  };
+  EXPECT_FALSE(separatePoses(pose, shifted(2.9), reference, cell));
+  EXPECT_TRUE(separatePoses(pose, shifted(3.1), reference, cell));
+  EXPECT_FALSE(separatePoses(pose, pose, reference, cell));
+}
+
 TEST(Registration, NearSymmetricFlangeIsToldApartWhenTheScanShowsTheDifference) {
   // The ABB flange turned by 120° lies on itself but for 8 % of its surface. A full scan shows
   // that part, and where it clearly sides with one pose that pose is "ok"; where it does not,
