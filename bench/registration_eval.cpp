@@ -241,7 +241,11 @@ int main(int argc, char** argv) {
           seconds,
           !right && is_ok ? "  <-- WRONG POSE REPORTED OK" : "");
       if (std::getenv("FI_VERBOSE") != nullptr) {
-        std::printf("    %s\n", result.status.message.c_str());
+        std::printf("    %s\n   ", result.status.message.c_str());
+        for (const auto& timing : result.timings) {
+          std::printf(" %s %.3f", timing.stage.c_str(), timing.seconds);
+        }
+        std::printf("\n");
       }
     }
   }
