@@ -2,8 +2,9 @@
 // Copyright 2026 The freeform_inspection authors
 //
 // descriptor_bench: time and peak memory of the multiscale descriptors on the sample blade at a
-// chosen size, as a mesh or as a cloud. One JSON line per run; bench/run_descriptor_bench.sh runs
-// the sizes of docs/benchmarks.md, one process each so peak memory belongs to one size.
+// chosen size, as a mesh or as a cloud, optionally with descriptor.coarse_ball_cells set. One
+// JSON line per run; bench/run_descriptor_bench.sh runs the sizes of docs/benchmarks.md, one
+// process each so peak memory belongs to one size.
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -49,13 +50,17 @@ long peakMemoryKiB() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3 || (std::string(argv[1]) != "mesh" && std::string(argv[1]) != "cloud")) {
-    std::cerr << "usage: descriptor_bench mesh|cloud POINTS\n";
+  if ((argc != 3 && argc != 4) ||
+      (std::string(argv[1]) != "mesh" && std::string(argv[1]) != "cloud")) {
+    std::cerr << "usage: descriptor_bench mesh|cloud POINTS [COARSE_BALL_CELLS]\n";
     return 2;
   }
   const std::string mode = argv[1];
   const double size = std::atof(argv[2]);
-  const fi::DescriptorConfig config;
+  fi::DescriptorConfig config;
+  if (argc == 4) {
+    config.coarse_ball_cells = std::atof(argv[3]);
+  }
   const fi::TriangleMesh cad = bladeMesh(7300);
   const auto radii = fi::kernelRadii(fi::computeBoundingBox(cad.vertices).diagonal(), config);
   fi::Points points;

@@ -13,6 +13,7 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"descriptor/scales", &config.descriptor.scales},
       {"descriptor/max_radius_ratio", &config.descriptor.max_radius_ratio},
       {"descriptor/cell_ratio", &config.descriptor.cell_ratio},
+      {"descriptor/coarse_ball_cells", &config.descriptor.coarse_ball_cells},
       {"descriptor/cloud_edge_neighbours", &config.descriptor.cloud_edge_neighbours},
       {"descriptor/cloud_edge_spacings", &config.descriptor.cloud_edge_spacings},
       {"descriptor/cloud_neighbours", &config.descriptor.cloud_curvature.neighbours},

@@ -131,6 +131,80 @@ Eigen::MatrixXd multiscaleCurvature(const SurfaceGraph& graph, const std::vector
   return curvature;
 }
 
+// Values of the coarse cells at the fine ones: an area- and distance-weighted mean over the
+// coarse cell of the fine cell's first point and that cell's neighbours, so the field is smooth
+// across the coarse cells' borders instead of stepping there.
+Eigen::MatrixXd interpolateCells(const SurfaceGraph& coarse,
+                                 const Eigen::MatrixXd& values,
+                                 const SurfaceGraph& fine,
+                                 double coarse_cell) {
+  std::vector<int> fine_to_coarse(fine.size(), -1);
+  for (std::size_t i = 0; i < fine.point_cell.size(); ++i) {
+    const int f = fine.point_cell[i];
+    if (f >= 0 && fine_to_coarse[static_cast<std::size_t>(f)] < 0) {
+      fine_to_coarse[static_cast<std::size_t>(f)] = coarse.point_cell[i];
+    }
+  }
+  const double inverse_spread = 2.0 / (coarse_cell * coarse_cell);
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(fine.size()), values.cols());
+  for (std::size_t f = 0; f < fine.size(); ++f) {
+    const auto g = static_cast<std::size_t>(fine_to_coarse[f]);
+    Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(values.cols());
+    double weights = 0.0;
+    const auto add = [&](std::size_t c) {
+      const double w =
+          coarse.area[c] *
+          std::exp(-inverse_spread * (coarse.centroids[c] - fine.centroids[f]).squaredNorm());
+      sum += w * values.row(static_cast<Eigen::Index>(c));
+      weights += w;
+    };
+    add(g);
+    for (std::size_t e = coarse.offsets[g]; e < coarse.offsets[g + 1]; ++e) {
+      add(static_cast<std::size_t>(coarse.neighbours[e]));
+    }
+    out.row(static_cast<Eigen::Index>(f)) = sum / weights;
+  }
+  return out;
+}
+
+// H̃_k of every fine cell, each scale averaged on its level's graph (scaleLevels).
+Eigen::MatrixXd multilevelCurvature(const SurfaceSamples& samples,
+                                    const std::vector<SurfaceEdge>& edges,
+                                    const SurfaceGraph& fine,
+                                    double cell,
+                                    const std::vector<double>& radii,
+                                    double ball_cells) {
+  const std::vector<int> levels = scaleLevels(radii, cell, ball_cells);
+  Eigen::MatrixXd curvature(static_cast<Eigen::Index>(fine.size()),
+                            static_cast<Eigen::Index>(radii.size()));
+  for (int level = 0; level <= levels.back(); ++level) {
+    std::vector<double> level_radii;
+    std::vector<Eigen::Index> columns;
+    for (std::size_t k = 0; k < radii.size(); ++k) {
+      if (levels[k] == level) {
+        level_radii.push_back(radii[k]);
+        columns.push_back(static_cast<Eigen::Index>(k));
+      }
+    }
+    if (level_radii.empty()) {
+      continue;
+    }
+    Eigen::MatrixXd values;
+    if (level == 0) {
+      values = multiscaleCurvature(fine, level_radii);
+    } else {
+      const double coarse_cell = cell * std::pow(2.0, level);
+      const SurfaceGraph coarse = buildSurfaceGraph(samples, edges, coarse_cell);
+      values =
+          interpolateCells(coarse, multiscaleCurvature(coarse, level_radii), fine, coarse_cell);
+    }
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+      curvature.col(columns[j]) = values.col(static_cast<Eigen::Index>(j));
+    }
+  }
+  return curvature;
+}
+
 // The points a cloud's curvature is computed on: the lowest-index point of every voxel (a real
 // sample, never an average that could fall inside a thin wall). `representative` maps every
 // point to its voxel's entry in the returned list.
@@ -233,6 +307,9 @@ std::vector<std::string> validate(const DescriptorConfig& config) {
   if (!(config.cell_ratio > 0.0 && config.cell_ratio <= 1.0)) {
     errors.push_back("descriptor.cell_ratio must be in (0, 1]");
   }
+  if (!(config.coarse_ball_cells >= 0.0 && std::isfinite(config.coarse_ball_cells))) {
+    errors.push_back("descriptor.coarse_ball_cells must be a finite value >= 0");
+  }
   if (!(config.cloud_thinning_ratio >= 0.0 && config.cloud_thinning_ratio <= 1.0)) {
     errors.push_back("descriptor.cloud_thinning_ratio must be in [0, 1]");
   }
@@ -261,6 +338,21 @@ std::vector<double> kernelRadii(double cad_diagonal, const DescriptorConfig& con
     radii.push_back(k * r_max / config.scales);  // r_k = k · r_max / K (paper §3.3)
   }
   return radii;
+}
+
+// A ball many cells wide costs its area in cells from every cell, so the wide scales took most
+// of the time on the finest graph; their values change only over distances of a coarser
+// graph's cells.
+std::vector<int> scaleLevels(const std::vector<double>& radii, double cell, double ball_cells) {
+  std::vector<int> levels;
+  for (const double r : radii) {
+    int level = 0;
+    while (ball_cells > 0.0 && r >= ball_cells * cell * std::pow(2.0, level + 1)) {
+      ++level;
+    }
+    levels.push_back(level);
+  }
+  return levels;
 }
 
 double DescriptorResult::value(std::size_t point, int scale) const {
@@ -317,7 +409,12 @@ DescriptorResult computeDescriptors(const Points& points,
           : meshEdges(faces);
   const SurfaceSamples samples{
       &surface, &result.curvature.normals, &result.curvature.area, &result.curvature.mean};
-  result.graph = buildSurfaceGraph(samples, edges, config.cell_ratio * radii.front());
+  const double cell = config.cell_ratio * radii.front();
+  result.graph = buildSurfaceGraph(samples, edges, cell);
+  if (result.graph.size() > 0) {  // before the points of a thinned cloud are mapped back
+    result.cell_curvature =
+        multilevelCurvature(samples, edges, result.graph, cell, radii, config.coarse_ball_cells);
+  }
   if (thinned) {  // every original point takes the cell of its voxel's representative
     std::vector<int> point_cell(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -333,7 +430,6 @@ DescriptorResult computeDescriptors(const Points& points,
     result.status = Status::failure(StatusCode::kDegenerateInput, "surface has no area");
     return result;
   }
-  result.cell_curvature = multiscaleCurvature(result.graph, radii);
   result.cell_values.resizeLike(result.cell_curvature);
   for (Eigen::Index k = 0; k < result.cell_values.cols(); ++k) {
     // eq. 11: V_k = 1/2 − (3/16) · H̃_k · r_k

@@ -46,6 +46,7 @@ std::string descriptorCacheKey(const TriangleMesh& mesh, const DescriptorConfig&
   hash.add(config.scales);
   hash.add(config.max_radius_ratio);
   hash.add(config.cell_ratio);
+  hash.add(config.coarse_ball_cells);
   hash.add(config.cloud_edge_neighbours);
   hash.add(config.cloud_edge_spacings);
   hash.add(config.cloud_thinning_ratio);
