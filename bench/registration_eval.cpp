@@ -129,7 +129,9 @@ int main(int argc, char** argv) {
     pipeline_config = read.config;
   }
   const auto load_start = std::chrono::steady_clock::now();
-  const fi::ModelLoadResult loaded = fi::loadModel(options.cad, options.cad_scale, "eval");
+  // The CAD's descriptors with the same settings as the scan's, as the CLI and the node do.
+  const fi::ModelLoadResult loaded =
+      fi::loadModel(options.cad, options.cad_scale, "eval", pipeline_config.descriptor);
   if (!loaded.status.ok()) {
     std::fprintf(stderr, "registration_eval: %s\n", loaded.status.message.c_str());
     return 2;

@@ -48,6 +48,8 @@ class Model {
   /// Hash of the mesh and the descriptor settings: the key under which the descriptors may be
   /// cached (the same file content and configuration give the same key).
   const std::string& descriptorKey() const { return descriptor_key_; }
+  /// The descriptor settings the CAD's descriptors were computed with: a scan must use the same.
+  const DescriptorConfig& descriptorConfig() const { return descriptor_config_; }
   /// Exact closest-point and ray queries on the CAD triangles (ICP, verification, deviation).
   const MeshQuery& query() const { return *query_; }
   /// Surface-graph cell size [m]: the spatial resolution of the descriptors and of the global
@@ -70,11 +72,15 @@ class Model {
   std::string source_;
   DescriptorResult descriptors_;
   std::string descriptor_key_;
+  DescriptorConfig descriptor_config_;
   std::unique_ptr<MeshQuery> query_;
   double cell_ratio_ = 0.0;
   std::vector<Symmetry> symmetries_;
   std::vector<std::uint8_t> face_border_edges_;
 };
+
+/// @brief Hash of the descriptor settings alone: equal keys mean the same descriptors.
+std::string descriptorSettingsKey(const DescriptorConfig& config);
 
 /// Result of loading a model.
 struct ModelLoadResult {

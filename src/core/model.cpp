@@ -31,6 +31,21 @@ class Fnv1a {
   std::uint64_t hash_ = 1469598103934665603ull;
 };
 
+void addSettings(const DescriptorConfig& config, Fnv1a* hash) {
+  hash->add(config.scales);
+  hash->add(config.max_radius_ratio);
+  hash->add(config.cell_ratio);
+  hash->add(config.coarse_ball_cells);
+  hash->add(config.cloud_edge_neighbours);
+  hash->add(config.cloud_edge_spacings);
+  hash->add(config.cloud_thinning_ratio);
+  hash->add(config.max_analysed_points);
+  hash->add(config.mesh_curvature.method);
+  hash->add(config.cloud_curvature.neighbours);
+  hash->add(config.noise_fit_multiple);
+  hash->add(config.max_cloud_neighbours);
+}
+
 std::string descriptorCacheKey(const TriangleMesh& mesh, const DescriptorConfig& config) {
   Fnv1a hash;
   for (const auto& v : mesh.vertices) {
@@ -43,18 +58,7 @@ std::string descriptorCacheKey(const TriangleMesh& mesh, const DescriptorConfig&
     hash.add(f[1]);
     hash.add(f[2]);
   }
-  hash.add(config.scales);
-  hash.add(config.max_radius_ratio);
-  hash.add(config.cell_ratio);
-  hash.add(config.coarse_ball_cells);
-  hash.add(config.cloud_edge_neighbours);
-  hash.add(config.cloud_edge_spacings);
-  hash.add(config.cloud_thinning_ratio);
-  hash.add(config.max_analysed_points);
-  hash.add(config.mesh_curvature.method);
-  hash.add(config.cloud_curvature.neighbours);
-  hash.add(config.noise_fit_multiple);
-  hash.add(config.max_cloud_neighbours);
+  addSettings(config, &hash);
   return hash.hex();
 }
 
@@ -103,10 +107,17 @@ Model::Model(TriangleMesh mesh,
       source_(std::move(source)),
       descriptors_(describeModel(mesh_, bounds_.diagonal(), descriptor_config)),
       descriptor_key_(descriptorCacheKey(mesh_, descriptor_config)),
+      descriptor_config_(descriptor_config),
       query_(std::make_unique<MeshQuery>(mesh_)),
       cell_ratio_(descriptor_config.cell_ratio),
       symmetries_(findSymmetries(descriptors_, *query_, cellSize(), bounds_.diagonal())),
       face_border_edges_(borderEdgeMasks(mesh_)) {}
+
+std::string descriptorSettingsKey(const DescriptorConfig& config) {
+  Fnv1a hash;
+  addSettings(config, &hash);
+  return hash.hex();
+}
 
 double Model::cellSize() const {
   return descriptors_.radii.empty() ? 0.0 : cell_ratio_ * descriptors_.radii.front();

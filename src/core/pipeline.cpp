@@ -519,7 +519,13 @@ InspectionResult inspect(const Model& model,
   InspectionResult result;
   result.counts.cad_vertices = model.mesh().vertices.size();
   Stopwatch watch{&result, &progress};
-  if (watch.proceed("clean", 0.0)) {
+  if (descriptorSettingsKey(model.descriptorConfig()) != descriptorSettingsKey(config.descriptor)) {
+    // Descriptors computed two ways do not match: every correspondence would be a guess.
+    result.status = Status::failure(
+        StatusCode::kInvalidInput,
+        "the model's descriptors were computed with other descriptor settings than this "
+        "inspection's: load the model with the pipeline's descriptor settings");
+  } else if (watch.proceed("clean", 0.0)) {
     runStages(model, scan, config, progress, &watch, &result);
   }
   judge(config, &result);

@@ -237,6 +237,32 @@ TEST(Inspection, VerdictNeedsATrustedPoseAndEnoughCoverage) {
   EXPECT_FALSE(failed.verdict_reason.empty());
 }
 
+TEST(Inspection, ScanDescriptorsMustBeComputedLikeTheModels) {
+  // The blade was loaded with the default descriptor settings; a pipeline with other ones would
+  // compare descriptors computed two ways. It is refused before any stage runs, with a status
+  // that says why, and no pose.
+  const SyntheticScan scan = makeCase(3, 0.002, false);
+  PipelineConfig other;
+  other.descriptor.coarse_ball_cells = 2.4;
+  std::vector<std::string> stages;
+  const InspectionResult refused =
+      inspect(blade(), scan.scan, other, [&](const std::string& stage, double) {
+        stages.push_back(stage);
+        return true;
+      });
+  EXPECT_EQ(refused.status.code, StatusCode::kInvalidInput);
+  EXPECT_NE(refused.status.message.find("descriptor settings"), std::string::npos);
+  EXPECT_EQ(refused.registration, RegistrationStatus::kFailed);
+  EXPECT_EQ(refused.verdict, Verdict::kNotEvaluated);
+  EXPECT_TRUE(stages.empty());
+  // The same settings in a model loaded with them: registered.
+  const ModelLoadResult matching = loadModel(kBlade, 0.001, "blade", other.descriptor);
+  ASSERT_TRUE(matching.status.ok()) << matching.status.message;
+  EXPECT_NE(matching.model->descriptorKey(), blade().descriptorKey());
+  const InspectionResult registered = inspect(*matching.model, scan.scan, other);
+  EXPECT_EQ(registered.registration, RegistrationStatus::kOk) << registered.status.message;
+}
+
 TEST(Inspection, ABandNarrowerThanTheNoiseIsFlagged) {
   const SyntheticScan truth = makeCase(7, 0.005, false);
   const InspectionResult result = inspect(blade(), truth.scan, withBand(0.001 * diagonal()));
