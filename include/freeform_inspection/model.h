@@ -74,7 +74,6 @@ class Model {
   std::string descriptor_key_;
   DescriptorConfig descriptor_config_;
   std::unique_ptr<MeshQuery> query_;
-  double cell_ratio_ = 0.0;
   std::vector<Symmetry> symmetries_;
   std::vector<std::uint8_t> face_border_edges_;
 };

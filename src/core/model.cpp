@@ -109,7 +109,6 @@ Model::Model(TriangleMesh mesh,
       descriptor_key_(descriptorCacheKey(mesh_, descriptor_config)),
       descriptor_config_(descriptor_config),
       query_(std::make_unique<MeshQuery>(mesh_)),
-      cell_ratio_(descriptor_config.cell_ratio),
       symmetries_(findSymmetries(descriptors_, *query_, cellSize(), bounds_.diagonal())),
       face_border_edges_(borderEdgeMasks(mesh_)) {}
 
@@ -120,7 +119,8 @@ std::string descriptorSettingsKey(const DescriptorConfig& config) {
 }
 
 double Model::cellSize() const {
-  return descriptors_.radii.empty() ? 0.0 : cell_ratio_ * descriptors_.radii.front();
+  return descriptors_.radii.empty() ? 0.0
+                                    : descriptor_config_.cell_ratio * descriptors_.radii.front();
 }
 
 ModelLoadResult loadModel(const std::string& path,
