@@ -97,8 +97,11 @@ double verificationScore(const Eigen::Isometry3d& T_cad_scan,
                          double truncation,
                          double normal_tolerance_deg);
 
-/// @brief Per point of the set, its term of verificationScore() (0 where the pose does not
-/// explain it).
+/// @brief Per point of the set, 1 − d²/τ² where d is the distance to the nearest CAD surface that
+/// faces the way the point's normal does (MeshQuery::closestFacing), 0 where none lies within τ.
+/// The evidence scanPrefers() weighs: unlike verificationScore()'s nearest surface, it does not
+/// disown noisy points on a wall thinner than the noise, which turn up nearer its far side and
+/// would make two poses differ by where the noise fell (a flange's 120° twin preferred 106:36).
 std::vector<double> verificationTerms(const Eigen::Isometry3d& T_cad_scan,
                                       const VerificationSet& set,
                                       const MeshQuery& cad,

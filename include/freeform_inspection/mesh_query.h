@@ -55,6 +55,16 @@ class MeshQuery {
   ClosestPoint closest(const Eigen::Vector3d& query,
                        double max_distance = std::numeric_limits<double>::infinity()) const;
 
+  /// @brief closest() among the faces that face the way `normal` does: outward normals within
+  /// the angle whose cosine is `min_cos` (compared as lines when `oriented` is false). Whether
+  /// some surface turned that way lies within `max_distance`: a noisy point on a wall thinner
+  /// than its noise is often nearer the wall's far side, which a plain closest() would report.
+  ClosestPoint closestFacing(const Eigen::Vector3d& query,
+                             const Eigen::Vector3d& normal,
+                             double min_cos,
+                             bool oriented,
+                             double max_distance) const;
+
   /// @brief closest() for many points (OpenMP parallel; results in input order).
   std::vector<ClosestPoint> closest(
       const Points& queries, double max_distance = std::numeric_limits<double>::infinity()) const;

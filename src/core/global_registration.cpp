@@ -198,10 +198,36 @@ std::vector<double> verificationTerms(const Eigen::Isometry3d& T_cad_scan,
                                       const MeshQuery& cad,
                                       double truncation,
                                       double normal_tolerance_deg) {
-  // Serial: callers score many poses in parallel instead (one parallel region per batch of
-  // poses, not per pose, so a busy core does not stall every call).
+  // A point counts where some surface facing its way lies within τ, so where the noise pushed a
+  // point on a thin wall does not decide which of two poses explains it. Serial, like the score.
   const double min_cos = std::cos(normal_tolerance_deg * kDegree);
   std::vector<double> terms(set.points.size(), 0.0);
+  for (std::size_t i = 0; i < set.points.size(); ++i) {
+    const Eigen::Vector3d normal = T_cad_scan.linear() * set.normals[i];
+    const Eigen::Vector3d point = T_cad_scan * set.points[i];
+    const ClosestPoint closest =
+        hasNormal(normal) ? cad.closestFacing(point, normal, min_cos, set.oriented, truncation)
+                          : cad.closest(point, truncation);
+    if (closest.found) {
+      terms[i] = 1.0 - std::pow(closest.distance / truncation, 2);
+    }
+  }
+  return terms;
+}
+
+double verificationScore(const Eigen::Isometry3d& T_cad_scan,
+                         const VerificationSet& set,
+                         const MeshQuery& cad,
+                         double truncation,
+                         double normal_tolerance_deg) {
+  // Serial: callers score many poses in parallel instead (one parallel region per batch of
+  // poses, not per pose, so a busy core does not stall every call). The nearest surface only:
+  // the ranking of hypotheses was settled with it, and it is the cheaper query.
+  if (set.points.empty()) {
+    return 0.0;
+  }
+  const double min_cos = std::cos(normal_tolerance_deg * kDegree);
+  double sum = 0.0;
   for (std::size_t i = 0; i < set.points.size(); ++i) {
     const ClosestPoint closest = cad.closest(T_cad_scan * set.points[i], truncation);
     if (!closest.found) {
@@ -213,23 +239,7 @@ std::vector<double> verificationTerms(const Eigen::Isometry3d& T_cad_scan,
     if (hasNormal(normal) && agreement < min_cos) {
       continue;
     }
-    terms[i] = 1.0 - std::pow(closest.distance / truncation, 2);
-  }
-  return terms;
-}
-
-double verificationScore(const Eigen::Isometry3d& T_cad_scan,
-                         const VerificationSet& set,
-                         const MeshQuery& cad,
-                         double truncation,
-                         double normal_tolerance_deg) {
-  if (set.points.empty()) {
-    return 0.0;
-  }
-  double sum = 0.0;
-  for (const double term :
-       verificationTerms(T_cad_scan, set, cad, truncation, normal_tolerance_deg)) {
-    sum += term;
+    sum += 1.0 - std::pow(closest.distance / truncation, 2);
   }
   return sum / static_cast<double>(set.points.size());
 }

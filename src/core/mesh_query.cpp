@@ -233,13 +233,29 @@ struct PointQueryState {
   Eigen::Vector3d query = Eigen::Vector3d::Zero();        // mesh frame
   Eigen::Vector3d local_query = Eigen::Vector3d::Zero();  // centred frame, as Embree sees it
   double max_distance = 0.0;
+  // closestFacing(): only faces whose normal agrees with this one (zero: every face).
+  Eigen::Vector3d facing = Eigen::Vector3d::Zero();
+  double min_cos = -1.0;
+  bool oriented = true;
   int face = -1;
   TrianglePoint best;
 };
 
+bool facesTheWay(const PointQueryState& state, int face) {
+  if (state.facing.isZero()) {
+    return true;
+  }
+  const double agreement =
+      state.facing.dot(state.impl->mesh.face_normals[static_cast<std::size_t>(face)]);
+  return (state.oriented ? agreement : std::abs(agreement)) >= state.min_cos;
+}
+
 // Offers one face; true when it became the best so far. Equal distances go to the lower face
 // index, so the answer does not depend on the traversal order.
 bool considerFace(PointQueryState& state, int face) {
+  if (!facesTheWay(state, face)) {
+    return false;
+  }
   const TrianglePoint candidate = closestOnTriangle(state.query,
                                                     state.impl->vertex(face, 0),
                                                     state.impl->vertex(face, 1),
@@ -444,29 +460,32 @@ const TriangleMesh& MeshQuery::mesh() const {
   return impl_->mesh;
 }
 
-ClosestPoint MeshQuery::closest(const Eigen::Vector3d& query, double max_distance) const {
+namespace {
+
+// The search behind closest() and closestFacing(): `state` holds the distance bound and filter.
+ClosestPoint closestOnMesh(const Data& data, const Eigen::Vector3d& query, PointQueryState& state) {
   ClosestPoint result;
-  if (!impl_->valid() || !query.allFinite() || std::isnan(max_distance) || max_distance < 0.0) {
+  if (!data.valid() || !query.allFinite() || std::isnan(state.max_distance) ||
+      state.max_distance < 0.0) {
     return result;
   }
-  PointQueryState state;
-  state.impl = impl_.get();
+  state.impl = &data;
   state.query = query;
-  state.local_query = query - impl_->centre;
-  state.max_distance = max_distance;
+  state.local_query = query - data.centre;
+  const double max_distance = state.max_distance;
   if (representable(state.local_query)) {
     RTCPointQuery point_query;
     point_query.x = static_cast<float>(state.local_query.x());
     point_query.y = static_cast<float>(state.local_query.y());
     point_query.z = static_cast<float>(state.local_query.z());
     point_query.time = 0.0f;
-    point_query.radius = impl_->searchRadius(max_distance, state.local_query);
+    point_query.radius = data.searchRadius(max_distance, state.local_query);
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
-    rtcPointQuery(impl_->scene, &point_query, &context, pointQueryCallback, &state);
+    rtcPointQuery(data.scene, &point_query, &context, pointQueryCallback, &state);
   } else {
     // Too far away for Embree's float coordinates: every face is a candidate anyway.
-    for (std::size_t f = 0; f < impl_->mesh.faces.size(); ++f) {
+    for (std::size_t f = 0; f < data.mesh.faces.size(); ++f) {
       considerFace(state, static_cast<int>(f));
     }
   }
@@ -476,17 +495,40 @@ ClosestPoint MeshQuery::closest(const Eigen::Vector3d& query, double max_distanc
   result.found = true;
   result.face = state.face;
   result.point = state.best.point;
-  result.normal = impl_->mesh.face_normals[static_cast<std::size_t>(state.face)];
+  result.normal = data.mesh.face_normals[static_cast<std::size_t>(state.face)];
   result.distance = std::sqrt(state.best.squared_distance);
   if (result.distance == 0.0) {
     result.signed_distance = 0.0;
   } else {
     // Ties (query in the plane of the pseudo-normal, e.g. beside an open boundary) count as
     // outside.
-    const double side = (query - result.point).dot(impl_->pseudoNormal(state.face, state.best));
+    const double side = (query - result.point).dot(data.pseudoNormal(state.face, state.best));
     result.signed_distance = side < 0.0 ? -result.distance : result.distance;
   }
   return result;
+}
+
+}  // namespace
+
+ClosestPoint MeshQuery::closest(const Eigen::Vector3d& query, double max_distance) const {
+  PointQueryState state;
+  state.max_distance = max_distance;
+  return closestOnMesh(*impl_, query, state);
+}
+
+ClosestPoint MeshQuery::closestFacing(const Eigen::Vector3d& query,
+                                      const Eigen::Vector3d& normal,
+                                      double min_cos,
+                                      bool oriented,
+                                      double max_distance) const {
+  PointQueryState state;
+  state.max_distance = max_distance;
+  if (normal.allFinite() && normal.norm() > 0.0) {
+    state.facing = normal.normalized();
+    state.min_cos = min_cos;
+    state.oriented = oriented;
+  }
+  return closestOnMesh(*impl_, query, state);
 }
 
 std::vector<ClosestPoint> MeshQuery::closest(const Points& queries, double max_distance) const {

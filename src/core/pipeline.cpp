@@ -348,9 +348,15 @@ void registerScan(const Model& model,
     return verificationTerms(
         pose, set, model.query(), evidence, config.registration.normal_tolerance_deg);
   };
+  // A rival is within reach of the best's lower score, quickly refined as the rivals are or
+  // fully refined: full refinement alone can lift the best past its twins (a flange's 120° twin:
+  // best 0.57 quick, 0.63 full, twin 0.57), or move it off the pose it was ranked at (0.38 quick,
+  // 0.37 full, 11° away) — neither may decide that no rival is left.
+  const double reach = config.registration.ambiguity_ratio *
+                       std::min(fine_scores[best], fineScore(contenders[best].T_cad_scan));
   std::vector<double> best_terms;  // only when a rival needs them
   for (std::size_t c = 0; c < contenders.size(); ++c) {
-    if (c == best || fine_scores[c] < config.registration.ambiguity_ratio * fine_scores[best] ||
+    if (c == best || fine_scores[c] < reach ||
         !separatePoses(result->T_cad_scan, contenders[c].T_cad_scan, reference, cell)) {
       continue;
     }

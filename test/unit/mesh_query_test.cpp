@@ -288,6 +288,35 @@ TEST(MeshQuery, MaxDistanceIsRespected) {
   EXPECT_TRUE(batch[1].found);
 }
 
+TEST(MeshQuery, ClosestFacingSkipsTheFacesTurnedOtherwise) {
+  // A wall 1 mm thick (z in [-0.5, 0.5] mm) and 20 mm wide: a point 0.2 mm above its mid-plane
+  // is nearest the top face, but a surface facing down lies 0.7 mm away, on the bottom.
+  const MeshQuery wall(test::makeBox(Eigen::Vector3d(0.01, 0.01, 0.0005)));
+  ASSERT_TRUE(wall.status().ok());
+  const Eigen::Vector3d q(0.001, -0.002, 0.0002);
+  const double cos40 = std::cos(40.0 * 3.14159265358979323846 / 180.0);
+  const ClosestPoint nearest = wall.closest(q, 0.01);
+  ASSERT_TRUE(nearest.found);
+  EXPECT_NEAR(nearest.distance, 0.0003, 1e-12);
+  EXPECT_NEAR(nearest.normal.z(), 1.0, 1e-12);
+  const ClosestPoint down = wall.closestFacing(q, {0.0, 0.0, -1.0}, cos40, true, 0.01);
+  ASSERT_TRUE(down.found);
+  EXPECT_NEAR(down.distance, 0.0007, 1e-12);
+  EXPECT_NEAR(down.normal.z(), -1.0, 1e-12);
+  EXPECT_NEAR(down.signed_distance, -0.0007, 1e-12);  // inside the material, seen from below
+  // Within 30° of down, not only down itself; compared as lines, the top face faces both ways.
+  const Eigen::Vector3d tilted(std::sin(0.5), 0.0, -std::cos(0.5));
+  EXPECT_NEAR(wall.closestFacing(q, tilted, cos40, true, 0.01).distance, 0.0007, 1e-12);
+  EXPECT_NEAR(wall.closestFacing(q, {0.0, 0.0, -1.0}, cos40, false, 0.01).distance, 0.0003, 1e-12);
+  // Facing +x: only the wall's end 9 mm away; the bound and an unnormalised normal as closest().
+  EXPECT_NEAR(wall.closestFacing(q, {2.0, 0.0, 0.0}, cos40, true, 0.01).distance, 0.009, 1e-12);
+  EXPECT_FALSE(wall.closestFacing(q, {1.0, 0.0, 0.0}, cos40, true, 0.005).found);
+  EXPECT_FALSE(wall.closestFacing(q, {0.0, 0.0, -1.0}, cos40, true, 0.0006).found);
+  // No normal to go by: every face counts.
+  EXPECT_NEAR(
+      wall.closestFacing(q, Eigen::Vector3d::Zero(), cos40, true, 0.01).distance, 0.0003, 1e-12);
+}
+
 TEST(MeshQuery, BatchEqualsSingleQueries) {
   const MeshQuery query(test::torus(1.0, 0.3, 32, 16));
   ASSERT_TRUE(query.status().ok());

@@ -292,6 +292,41 @@ TEST(Registration, ScanPrefersOnlyAPoseThatExplainsClearlyMore) {
   EXPECT_TRUE(scanPrefers(differing(30, 0).first, differing(30, 0).second));
 }
 
+TEST(Registration, VerificationCountsNoisyPointsOnAWallThinnerThanTheNoise) {
+  // A wall 1 mm thick seen from both sides with σ = 0.5 mm along the normals, printed seed: a
+  // point pushed past the mid-plane is nearer the far face, which faces the other way. It is
+  // still explained, by its own face within the 3σ truncation.
+  constexpr unsigned kSeed = 20261123;
+  constexpr double kSigma = 0.0005;  // [m]
+  const MeshQuery wall(test::makeBox(Eigen::Vector3d(0.01, 0.01, 0.0005)));
+  std::mt19937 rng(kSeed);
+  std::uniform_real_distribution<double> across(-0.009, 0.009);
+  std::normal_distribution<double> noise(0.0, kSigma);
+  VerificationSet set;
+  set.oriented = true;
+  for (int i = 0; i < 1500; ++i) {
+    const double side = i % 2 == 0 ? 1.0 : -1.0;
+    set.points.emplace_back(across(rng), across(rng), side * 0.0005 + noise(rng));
+    set.normals.emplace_back(0.0, 0.0, side);
+  }
+  const double truncation = 3.0 * kSigma;
+  const auto explained = [&](const Eigen::Isometry3d& pose) {
+    const std::vector<double> terms = verificationTerms(pose, set, wall, truncation, 40.0);
+    return static_cast<double>(
+               std::count_if(terms.begin(), terms.end(), [](double t) { return t > 0.0; })) /
+           static_cast<double>(terms.size());
+  };
+  EXPECT_GT(explained(Eigen::Isometry3d::Identity()), 0.98) << "seed " << kSeed;
+  // The nearest face alone would disown the ~16 % pushed past the mid-plane (noise beyond 1σ).
+  int nearest_agrees = 0;
+  for (std::size_t i = 0; i < set.points.size(); ++i) {
+    nearest_agrees += wall.closest(set.points[i], truncation).normal.dot(set.normals[i]) > 0.0;
+  }
+  EXPECT_LT(nearest_agrees, 0.9 * 1500);
+  // Moved 3 mm off the wall, the points are explained by nothing.
+  EXPECT_LT(explained(Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 0.003))), 0.01);
+}
+
 TEST(Registration, PosesAreListedApartBeyondTenDegreesOrThreeCells) {
   constexpr double kDegree = 3.14159265358979323846 / 180.0;
   const double cell = 0.002;  // [m]
@@ -320,12 +355,18 @@ TEST(Registration, PosesAreListedApartBeyondTenDegreesOrThreeCells) {
 TEST(Registration, NearSymmetricFlangeIsToldApartWhenTheScanShowsTheDifference) {
   // The ABB flange turned by 120° lies on itself but for 8 % of its surface. A full scan shows
   // that part, and where it clearly sides with one pose that pose is "ok"; where it does not,
-  // the result stays ambiguous. Never "ok" with a turned pose.
+  // the result stays ambiguous. Never "ok" with a turned pose: seed 13 is a partial view at 1 %
+  // that was reported "ok" turned by 119.5° until the rivals' gate compared like with like and
+  // the evidence stopped counting the noise on thin walls (docs/registration.md); it is now
+  // ambiguous.
   const auto flange = load(kFlange, 1.0);
   ASSERT_TRUE(flange);
   int ok = 0;
-  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    const SyntheticScan truth = makeCase(*flange, caseConfig(seed, 0.005, false, 0.0));
+  for (const std::uint64_t seed : {1, 2, 3, 13}) {
+    const bool partial = seed == 13;
+    SyntheticScanConfig config = caseConfig(seed, partial ? 0.01 : 0.005, partial, 0.0);
+    config.points = partial ? 30000 : config.points;  // as registration_eval made that view
+    const SyntheticScan truth = makeCase(*flange, config);
     const InspectionResult result = inspect(*flange, truth.scan, PipelineConfig());
     const PoseError error = poseError(result, truth, flange->bounds().diagonal());
     std::printf("flange seed %d: %s, %.2f deg\n",
@@ -349,7 +390,9 @@ TEST(Registration, NearSymmetricFlangeIsToldApartWhenTheScanShowsTheDifference) 
       EXPECT_EQ(result.registration, RegistrationStatus::kAmbiguous) << result.status.message;
     }
   }
-  EXPECT_GE(ok, 1) << "the scan shows the flange's asymmetry: at least one view must say so";
+  // The three full views show the uneven bolt holes (until session 10 two of them said so; since
+  // the evidence counts surfaces facing each point's way, all three).
+  EXPECT_EQ(ok, 3) << "the full views show the flange's asymmetry: each must say so";
 }
 
 TEST(Registration, ScanOfAnotherPartIsNotRegistered) {
