@@ -314,14 +314,27 @@ TEST(Descriptor, NoiseRuinsOneRingCurvatureButTheDescriptorHolds) {
   }
 }
 
+// 30,000 points of a 100 mm sphere (seed kSeed) with noise of `share` × its diagonal along the
+// normals, and the kernel radii of that sphere as the CAD.
+struct NoisySphere {
+  std::vector<double> radii;
+  double sigma = 0.0;
+  SurfaceSample cloud;
+};
+NoisySphere noisySphereCloud(double share) {
+  const TriangleMesh sphere = test::icosphere(kRadius, 5);
+  const double sigma = share * computeBoundingBox(sphere.vertices).diagonal();
+  return {radiiFor(sphere.vertices), sigma, sampleSurface(sphere, 30000, kSeed, sigma)};
+}
+
 // Noise of 2 % of the diagonal (σ ≈ 1.2 r_1) along the normals of a 30k-point sphere: 24
 // neighbours fit the noise. Given the measured noise, the fit grows (noise_fit_multiple) and the
 // descriptor comes back towards eq. 10 at every scale; without it (0) nothing changes.
 TEST(Descriptor, NoisyCloudFitGrowsWithTheMeasuredNoise) {
-  const TriangleMesh sphere = test::icosphere(kRadius, 5);
-  const auto radii = radiiFor(sphere.vertices);
-  const double sigma = 0.02 * computeBoundingBox(sphere.vertices).diagonal();
-  const SurfaceSample cloud = sampleSurface(sphere, 30000, kSeed, sigma);
+  const NoisySphere sphere = noisySphereCloud(0.02);
+  const auto& radii = sphere.radii;
+  const double sigma = sphere.sigma;
+  const SurfaceSample& cloud = sphere.cloud;
   const DescriptorResult plain =
       computeDescriptors(cloud.points, {}, {}, radii, DescriptorConfig(), 0.0);
   const DescriptorResult sized =
@@ -353,10 +366,10 @@ TEST(Descriptor, NoisyCloudFitGrowsWithTheMeasuredNoise) {
 // fit still shrinks the curvature there (median H·R 0.77, |V_6 − eq. 10| 0.016 when it kept 24
 // neighbours); grown as soon as 3 σ outreaches them, it reads H·R ≈ 0.9 and half the error.
 TEST(Descriptor, NoisyCloudFitGrowsAsSoonAsTheNoiseOutreachesIt) {
-  const TriangleMesh sphere = test::icosphere(kRadius, 5);
-  const auto radii = radiiFor(sphere.vertices);
-  const double sigma = 0.0075 * computeBoundingBox(sphere.vertices).diagonal();
-  const SurfaceSample cloud = sampleSurface(sphere, 30000, kSeed, sigma);
+  const NoisySphere sphere = noisySphereCloud(0.0075);
+  const auto& radii = sphere.radii;
+  const double sigma = sphere.sigma;
+  const SurfaceSample& cloud = sphere.cloud;
   const DescriptorResult d =
       computeDescriptors(cloud.points, {}, {}, radii, DescriptorConfig(), sigma);
   ASSERT_TRUE(d.status.ok()) << d.status.message;
