@@ -367,19 +367,16 @@ TEST(Descriptor, NoisyCloudFitGrowsWithTheMeasuredNoise) {
 // neighbours); grown as soon as 3 σ outreaches them, it reads H·R ≈ 0.9 and half the error.
 TEST(Descriptor, NoisyCloudFitGrowsAsSoonAsTheNoiseOutreachesIt) {
   const NoisySphere sphere = noisySphereCloud(0.0075);
-  const auto& radii = sphere.radii;
-  const double sigma = sphere.sigma;
-  const SurfaceSample& cloud = sphere.cloud;
-  const DescriptorResult d =
-      computeDescriptors(cloud.points, {}, {}, radii, DescriptorConfig(), sigma);
+  const DescriptorResult d = computeDescriptors(
+      sphere.cloud.points, {}, {}, sphere.radii, DescriptorConfig(), sphere.sigma);
   ASSERT_TRUE(d.status.ok()) << d.status.message;
   EXPECT_GT(d.cloud_neighbours, 24);
   EXPECT_GT(median(d.curvature.mean) * kRadius, 0.85) << "seed " << kSeed;
   for (int k = 0; k < 6; ++k) {
-    const double expected = sphereValue(radii[static_cast<std::size_t>(k)]);
+    const double expected = sphereValue(sphere.radii[static_cast<std::size_t>(k)]);
     const Error error = descriptorError(
         d,
-        cloud.points.size(),
+        sphere.cloud.points.size(),
         k,
         [&](std::size_t) { return expected; },
         [](std::size_t) { return true; });
