@@ -37,6 +37,9 @@ struct CurvatureResult {
                                  ///< normals on meshes; estimated and oriented on clouds)
   Points on_plane;  ///< clouds: each point moved along its normal onto the least-squares plane
                     ///< of its neighbourhood, the noise averaged out (empty on meshes)
+  /// Clouds without given normals: the sign of some normals came from the centroid vote (no
+  /// visibility evidence), so a whole view may be inside out (its H negated).
+  bool signs_guessed = false;
 };
 
 /// @brief Curvature of every vertex of a mesh (paper eq. 2 and eq. 3, or eq. 4–5).
@@ -50,6 +53,9 @@ CurvatureResult computeMeshCurvature(const Points& vertices,
 /// Curvature estimator on unorganized point clouds.
 struct CloudCurvatureConfig {
   int neighbours = 24;  ///< k nearest neighbours of the curvature fit (and the PCA normal)
+  /// [m] the cloud's measured noise σ (0: unknown); widens the depth tolerance of the
+  /// visibility votes that orient normals when none are given
+  double noise_sigma = 0.0;
 };
 
 /// @brief Curvature of every point of a cloud without faces: the shape operator S fitted by
@@ -57,8 +63,10 @@ struct CloudCurvatureConfig {
 /// p_i) in the tangent plane; neighbours whose normal turned by more than 120° are on the other
 /// side of a thin wall and skipped) gives H = trace(S)/2. Normals are PCA normals of the
 /// neighbourhood, oriented by the scan's normals where given (`normals` non-empty, one per
-/// point; zero = unknown), elsewhere propagated over the kNN graph along the surface and
-/// flipped so that most point away from the centroid. Each
+/// point; zero = unknown). Without given normals, points whose side visibility from outside
+/// tells (a closed scan: seen from outside only) fix theirs; the rest are propagated over the
+/// kNN graph along the surface, and a component with no fixed point is flipped so that most
+/// normals point away from its centroid. Each
 /// point's area is π d_k² / k, d_k the distance to its k-th neighbour.
 CurvatureResult computeCloudCurvature(const Points& points,
                                       const Points& normals,

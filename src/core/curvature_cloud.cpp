@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "cloud_neighbours_internal.h"
+#include "cloud_visibility_internal.h"
+#include "median_internal.h"
 #include <Eigen/Eigenvalues>
 
 #include "freeform_inspection/curvature.h"
@@ -348,37 +350,89 @@ void orientAwayFromCentroid(const std::vector<int>& component,
   }
 }
 
+// Visibility votes count only when this share of the points has one: a closed (full) scan gets
+// most of its points voted (10-90 % on the benchmark parts), a single view almost none (at most
+// 0.2 %), and those few, seen past a layer's edge, are as often wrong as right.
+constexpr double kMinVotedShare = 0.05;
+
+// Points whose normal's side the visibility from outside tells (their normals turned to it), or
+// none when too few are told.
+std::vector<int> visibleAnchors(const Points& points,
+                                const Neighbourhoods& hoods,
+                                double noise_sigma,
+                                Points& normals) {
+  internal::VisibilityConfig config;
+  // Pixels twice the spacing (the distance to the 4th neighbour), so a surface covers its
+  // pixels; a point is seen within a pixel and 3 σ of noise of the front-most.
+  const int column = std::min(4, hoods.k - 1);
+  std::vector<double> spacing;
+  for (std::size_t i = 0; i < points.size(); i += 7) {
+    const auto other = std::size_t(hoods.of(i)[column]);
+    spacing.push_back((points[i] - points[other]).norm());
+  }
+  config.pixel = 2.0 * internal::median(std::move(spacing));
+  config.depth_tolerance = config.pixel + 3.0 * noise_sigma;
+  const std::vector<signed char> votes = internal::visibilityVotes(points, normals, config);
+  std::vector<int> anchors;
+  for (std::size_t i = 0; i < votes.size(); ++i) {
+    if (votes[i] != 0) {
+      anchors.push_back(static_cast<int>(i));
+    }
+  }
+  if (double(anchors.size()) < kMinVotedShare * double(points.size())) {
+    return {};
+  }
+  for (const int i : anchors) {
+    if (votes[std::size_t(i)] < 0) {
+      normals[std::size_t(i)] = -normals[std::size_t(i)];
+    }
+  }
+  return anchors;
+}
+
 // Hoppe-style orientation along a minimum spanning tree of the kNN graph. Components holding
-// given normals take their orientation from them; the others, from the centroid vote. Nothing
-// to do when every point has a given normal.
-void orientNormals(const Points& points,
+// given normals take their orientation from them; without given normals, points whose side the
+// visibility from outside tells anchor the tree instead; the others, from the centroid vote.
+// Nothing to do when every point has a given normal. Returns whether a share of the points
+// worth matching (kMinVotedShare; not a few stray outliers) took its sign from the vote.
+bool orientNormals(const Points& points,
                    const Neighbourhoods& hoods,
                    const std::vector<char>& fixed,
+                   double noise_sigma,
                    Points& normals) {
   if (std::all_of(fixed.begin(), fixed.end(), [](char f) { return f != 0; })) {
-    return;
+    return false;
   }
-  const Neighbourhoods near{hoods.table, std::min(hoods.k, kOrientationNeighbours)};
-  std::vector<WeightedEdge> edges = orientationEdges(points, normals, near);
-  sortEdges(edges);
   std::vector<int> anchors;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (fixed[i]) {
       anchors.push_back(static_cast<int>(i));
     }
   }
+  if (anchors.empty()) {
+    anchors = visibleAnchors(points, hoods, noise_sigma, normals);
+  }
+  const Neighbourhoods near{hoods.table, std::min(hoods.k, kOrientationNeighbours)};
+  std::vector<WeightedEdge> edges = orientationEdges(points, normals, near);
+  sortEdges(edges);
   const Forest forest = spanningForest(points.size(), edges, anchors);
   edges = {};
-  std::vector<char> visited(fixed);
+  std::vector<char> visited(points.size(), 0);
+  for (const int i : anchors) {
+    visited[std::size_t(i)] = 1;
+  }
   propagateOrientation(anchors, forest, normals, visited);
+  std::size_t guessed = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!visited[i]) {
       visited[i] = 1;
       const std::vector<int> component =
           propagateOrientation({static_cast<int>(i)}, forest, normals, visited);
       orientAwayFromCentroid(component, points, normals);
+      guessed += component.size();
     }
   }
+  return double(guessed) >= kMinVotedShare * double(points.size());
 }
 
 // Tangent basis (two rows) of the plane orthogonal to n.
@@ -475,7 +529,7 @@ CurvatureResult computeCloudCurvature(const Points& points,
   const Neighbourhoods hoods{table, config.neighbours};
   std::vector<char> fixed;
   result.normals = initialNormals(points, normals, hoods, fixed, result.on_plane);
-  orientNormals(points, hoods, fixed, result.normals);
+  result.signs_guessed = orientNormals(points, hoods, fixed, config.noise_sigma, result.normals);
   if (fitAllPoints(points, hoods, result) == 0) {
     result.status = Status::failure(StatusCode::kDegenerateInput,
                                     "cloud curvature: no point has a usable curvature fit (all " +

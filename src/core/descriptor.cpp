@@ -69,6 +69,7 @@ CurvatureResult pointCurvature(const Points& points,
                                int* neighbours) {
   if (faces.empty()) {
     CloudCurvatureConfig fit = config.cloud_curvature;
+    fit.noise_sigma = noise_sigma;
     const int table_k = std::max(fit.neighbours, config.cloud_edge_neighbours + 1);
     if (noise_sigma > 0.0 && points.size() >= static_cast<std::size_t>(table_k)) {
       *table = internal::nearestNeighbourTable(points, table_k);

@@ -182,26 +182,53 @@ void registerScan(const Model& model,
   if (!watch.proceed("correspondences", 0.47)) {
     return;
   }
-  const CorrespondenceResult candidates = findCandidates(scan.cell_values,
-                                                         features.cells,
-                                                         cad.cell_values,
-                                                         cad.graph.centroids,
-                                                         cell,
-                                                         config.correspondence);
+  // A cloud without normals that visibility could not orient (a single view) took its normals'
+  // sign from a centroid vote, which turns a concave view inside out (the pressure side of a
+  // blade seen alone): its curvature changes sign and every V_k reads 1 − V_k. Such a scan is
+  // also matched with its descriptors mirrored, and verification, blind to the normals' sign
+  // for it, chooses between the poses of both.
+  std::vector<CorrespondenceResult> candidates;
+  candidates.push_back(findCandidates(scan.cell_values,
+                                      features.cells,
+                                      cad.cell_values,
+                                      cad.graph.centroids,
+                                      cell,
+                                      config.correspondence));
+  if (!oriented && scan.curvature.signs_guessed) {
+    const Eigen::MatrixXd mirrored = (1.0 - scan.cell_values.array()).matrix();
+    candidates.push_back(findCandidates(mirrored,
+                                        features.cells,
+                                        cad.cell_values,
+                                        cad.graph.centroids,
+                                        cell,
+                                        config.correspondence));
+  }
   watch.lap("correspondences");
-  result->counts.candidates = candidates.candidates;
-  if (!candidates.status.ok()) {
-    result->status = candidates.status;
+  result->counts.candidates = candidates.front().candidates;
+  if (!candidates.front().status.ok()) {
+    result->status = candidates.front().status;
     return;
   }
   if (!watch.proceed("global_registration", 0.5)) {
     return;
   }
-  const GlobalRegistrationResult global = registerGlobally(
-      scan.graph, cad.graph, candidates, model.query(), cell, r_max, config.registration, oriented);
-  if (!global.status.ok()) {
+  GlobalRegistrationResult global;
+  std::vector<Status> failures;
+  for (const CorrespondenceResult& sign : candidates) {
+    GlobalRegistrationResult one = registerGlobally(
+        scan.graph, cad.graph, sign, model.query(), cell, r_max, config.registration, oriented);
+    if (!one.status.ok()) {
+      failures.push_back(one.status);
+    }
+    global.hypotheses.insert(global.hypotheses.end(), one.hypotheses.begin(), one.hypotheses.end());
+  }
+  std::stable_sort(
+      global.hypotheses.begin(),
+      global.hypotheses.end(),
+      [](const PoseHypothesis& a, const PoseHypothesis& b) { return a.score > b.score; });
+  if (global.hypotheses.empty()) {
     watch.lap("global_registration");
-    result->status = global.status;
+    result->status = failures.front();
     return;
   }
   const VerificationSet set =
@@ -298,12 +325,17 @@ void registerScan(const Model& model,
                                     model.query(),
                                     explained_within,
                                     config.registration.normal_tolerance_deg);
-  result->counts.correspondences = static_cast<std::size_t>(
-      countExplainedFeatures(icp.T_cad_scan,
+  std::size_t explained = 0;
+  for (const CorrespondenceResult& sign : candidates) {
+    explained = std::max(explained,
+                         static_cast<std::size_t>(countExplainedFeatures(
+                             icp.T_cad_scan,
                              scan.graph,
                              cad.graph,
-                             candidates,
-                             config.registration.pair_tolerance_cells * cell));
+                             sign,
+                             config.registration.pair_tolerance_cells * cell)));
+  }
+  result->counts.correspondences = explained;
 
   result->surface_on_cad = surfaceOnCad(scan.graph,
                                         scan_points,
