@@ -76,6 +76,32 @@ void voteFromDirection(const Points& points,
   }
 }
 
+// A depth image holds at most this many pixels per point, plus a floor: a far stray point
+// would otherwise stretch the image to billions of pixels.
+constexpr double kPixelsPerPoint = 4.0;
+constexpr double kMinPixelBudget = 1 << 20;
+
+// The pixel widened (and the tolerance with it) until an image over the points' bounding
+// sphere fits the budget.
+VisibilityConfig boundedImages(const Points& points, const VisibilityConfig& config) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) {
+    centre += p / double(points.size());
+  }
+  double radius = 0.0;
+  for (const Eigen::Vector3d& p : points) {
+    radius = std::max(radius, (p - centre).norm());
+  }
+  const double budget = std::max(kMinPixelBudget, kPixelsPerPoint * double(points.size()));
+  const double side = 2.0 * radius / std::sqrt(budget);
+  VisibilityConfig bounded = config;
+  if (side > config.pixel) {
+    bounded.depth_tolerance += side - config.pixel;
+    bounded.pixel = side;
+  }
+  return bounded;
+}
+
 }  // namespace
 
 std::vector<signed char> visibilityVotes(const Points& points,
@@ -87,6 +113,7 @@ std::vector<signed char> visibilityVotes(const Points& points,
   if (!(config.pixel > 0.0) || config.direction_pairs < 1) {
     return std::vector<signed char>(count, 0);
   }
+  const VisibilityConfig bounded = boundedImages(points, config);
 #pragma omp parallel
   {
     std::vector<int> my_facing(count, 0);
@@ -96,7 +123,7 @@ std::vector<signed char> visibilityVotes(const Points& points,
       voteFromDirection(points,
                         normals,
                         spiralDirection(k, config.direction_pairs),
-                        config,
+                        bounded,
                         &my_facing,
                         &my_away);
     }

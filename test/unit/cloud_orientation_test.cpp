@@ -86,6 +86,24 @@ TEST(VisibilityVotes, OpenSheetIsSeenFromBothSidesAndGetsNoVote) {
   EXPECT_LT(double(voted), 0.005 * double(points.size())) << "seed " << kSeed;
 }
 
+TEST(VisibilityVotes, StrayPointFarAwayDoesNotBlowUpTheImages) {
+  // One point 10 km from a 5 cm sphere: images over the whole extent at 3 mm pixels would hold
+  // 10^13 pixels. The pixel is widened instead; the stray point gets no vote of its own.
+  const analytic::Cloud sphere = analytic::sampleSphere(kRadius, kCount, kSeed);
+  Points points = sphere.points;
+  Points normals = sphere.normals;
+  points.emplace_back(1.0e4, 0.0, 0.0);
+  normals.emplace_back(1.0, 0.0, 0.0);
+  const std::vector<signed char> votes =
+      internal::visibilityVotes(points, normals, sphereVisibility());
+  ASSERT_EQ(votes.size(), points.size());
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < sphere.points.size(); ++i) {
+    wrong += votes[i] < 0 ? 1 : 0;  // the normals as given face out
+  }
+  EXPECT_EQ(wrong, 0u);
+}
+
 TEST(VisibilityVotes, NoPixelSizeGivesNoVote) {
   const analytic::Cloud sphere = analytic::sampleSphere(kRadius, 100, kSeed);
   const std::vector<signed char> votes =
