@@ -31,6 +31,11 @@ struct NeighbourTable {
 /// Parallel (OpenMP), each row written by one thread: the same for any thread count.
 NeighbourTable nearestNeighbourTable(const Points& points, int k);
 
+/// @brief Median distance from a point to its `column`-th nearest neighbour (1: the nearest
+/// other) over every 7th point: the cloud's spacing at that rank. 0 when the table has no
+/// such column.
+double tableDistance(const Points& points, const NeighbourTable& table, int column);
+
 /// Squared distance summed as x, y, z, exactly as PointIndex reports it.
 inline double squaredDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   double sum = 0.0;

@@ -108,12 +108,12 @@ std::vector<signed char> visibilityVotes(const Points& points,
                                          const Points& normals,
                                          const VisibilityConfig& config) {
   const std::size_t count = points.size();
-  std::vector<int> facing(count, 0);
-  std::vector<int> away(count, 0);
   if (!(config.pixel > 0.0) || config.direction_pairs < 1) {
     return std::vector<signed char>(count, 0);
   }
   const VisibilityConfig bounded = boundedImages(points, config);
+  std::vector<int> facing(count, 0);
+  std::vector<int> away(count, 0);
 #pragma omp parallel
   {
     std::vector<int> my_facing(count, 0);

@@ -16,7 +16,6 @@
 
 #include "cloud_neighbours_internal.h"
 #include "cloud_visibility_internal.h"
-#include "median_internal.h"
 #include <Eigen/Eigenvalues>
 
 #include "freeform_inspection/curvature.h"
@@ -364,13 +363,7 @@ std::vector<int> visibleAnchors(const Points& points,
   internal::VisibilityConfig config;
   // Pixels twice the spacing (the distance to the 4th neighbour), so a surface covers its
   // pixels; a point is seen within a pixel and 3 σ of noise of the front-most.
-  const int column = std::min(4, hoods.k - 1);
-  std::vector<double> spacing;
-  for (std::size_t i = 0; i < points.size(); i += 7) {
-    const auto other = std::size_t(hoods.of(i)[column]);
-    spacing.push_back((points[i] - points[other]).norm());
-  }
-  config.pixel = 2.0 * internal::median(std::move(spacing));
+  config.pixel = 2.0 * internal::tableDistance(points, *hoods.table, std::min(4, hoods.k - 1));
   config.depth_tolerance = config.pixel + 3.0 * noise_sigma;
   const std::vector<signed char> votes = internal::visibilityVotes(points, normals, config);
   std::vector<int> anchors;

@@ -11,7 +11,6 @@
 #include <utility>
 
 #include "cloud_neighbours_internal.h"
-#include "median_internal.h"
 
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/mesh_adjacency.h"
@@ -19,17 +18,6 @@
 
 namespace freeform_inspection {
 namespace {
-
-// Median distance from a point to its `column`-th nearest neighbour (1: the nearest other),
-// over every 7th point.
-double tableDistance(const Points& points, const internal::NeighbourTable& table, int column) {
-  std::vector<double> distances;
-  for (std::size_t i = 0; column > 0 && column < table.k && i < points.size(); i += 7) {
-    const auto other = static_cast<std::size_t>(table.of(i)[column]);
-    distances.push_back(std::sqrt(internal::squaredDistance(points[i], points[other])));
-  }
-  return internal::median(std::move(distances));
-}
 
 // Neighbours of the cloud curvature fit. A fit over a neighbourhood no wider than a few σ of
 // noise fits the noise: its normals turn at random and the curvature shrinks with them (a sphere
@@ -44,7 +32,7 @@ int fitNeighbours(const Points& points,
                   const DescriptorConfig& config) {
   constexpr std::size_t kMaxTableEntries = 8000000;  // 32 MB of indices
   const int configured = config.cloud_curvature.neighbours;
-  const double reach = tableDistance(points, table, configured - 1);
+  const double reach = internal::tableDistance(points, table, configured - 1);
   const double wanted = config.noise_fit_multiple * noise_sigma;
   if (!(reach > 0.0) || !(wanted > reach) || config.max_cloud_neighbours <= configured) {
     return configured;
@@ -398,7 +386,8 @@ DescriptorResult computeDescriptors(const Points& points,
   // blade: spacing ≈ r_1) would fall apart into islands no geodesic ball can grow over.
   const double edge_length =
       faces.empty()
-          ? std::max(radii.front(), config.cloud_edge_spacings * tableDistance(surface, table, 1))
+          ? std::max(radii.front(),
+                     config.cloud_edge_spacings * internal::tableDistance(surface, table, 1))
           : 0.0;
   const std::vector<SurfaceEdge> edges =
       faces.empty()

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "cloud_neighbours_internal.h"
+#include "median_internal.h"
 #include <nanoflann.hpp>
 
 namespace freeform_inspection {
@@ -457,6 +458,15 @@ void gridRows(const Points& points,
 }
 
 }  // namespace
+
+double tableDistance(const Points& points, const NeighbourTable& table, int column) {
+  std::vector<double> distances;
+  for (std::size_t i = 0; column > 0 && column < table.k && i < points.size(); i += 7) {
+    const auto other = static_cast<std::size_t>(table.of(i)[column]);
+    distances.push_back(std::sqrt(squaredDistance(points[i], points[other])));
+  }
+  return median(std::move(distances));
+}
 
 // Large sets: a uniform grid with cubes about the k-th neighbour distance, all points of a cube
 // answered from the 27 cubes around it (a few dozen candidates, contiguous in memory); rows that
