@@ -212,7 +212,8 @@ void registerScan(const Model& model,
   if (!watch.proceed("global_registration", 0.5)) {
     return;
   }
-  GlobalRegistrationResult global;
+  // Both signs' hypotheses in one list, best verified first.
+  std::vector<PoseHypothesis> hypotheses;
   std::vector<Status> failures;
   for (const CorrespondenceResult& sign : candidates) {
     GlobalRegistrationResult one = registerGlobally(
@@ -220,20 +221,20 @@ void registerScan(const Model& model,
     if (!one.status.ok()) {
       failures.push_back(one.status);
     }
-    global.hypotheses.insert(global.hypotheses.end(), one.hypotheses.begin(), one.hypotheses.end());
+    hypotheses.insert(hypotheses.end(), one.hypotheses.begin(), one.hypotheses.end());
   }
   std::stable_sort(
-      global.hypotheses.begin(),
-      global.hypotheses.end(),
-      [](const PoseHypothesis& a, const PoseHypothesis& b) { return a.score > b.score; });
-  if (global.hypotheses.empty()) {
+      hypotheses.begin(), hypotheses.end(), [](const PoseHypothesis& a, const PoseHypothesis& b) {
+        return a.score > b.score;
+      });
+  if (hypotheses.empty()) {
     watch.lap("global_registration");
     result->status = failures.front();
     return;
   }
   const VerificationSet set =
       makeVerificationSet(scan.graph, config.registration.verification_points, oriented);
-  const std::vector<RefinedPose> refined = refineHypotheses(model, global.hypotheses, set, config);
+  const std::vector<RefinedPose> refined = refineHypotheses(model, hypotheses, set, config);
   watch.lap("global_registration");
   if (!watch.proceed("icp", 0.75)) {
     return;
