@@ -2,7 +2,6 @@
 // Copyright 2026 The freeform_inspection authors
 #pragma once
 
-#include <queue>
 #include <utility>
 #include <vector>
 
@@ -23,6 +22,11 @@ struct BallMember {
 };
 
 /// Reusable scratch space for growing balls on one graph (one per thread).
+///
+/// Dijkstra with buckets as wide as the graph's shortest link (Dial's queue): no cell can improve
+/// another of its own bucket, so a bucket is settled in any order and then sorted, instead of
+/// every cell passing through a heap of the whole front. The ball is exactly a binary heap's.
+/// A graph whose shortest link would need too many buckets uses one heap, as before.
 class GeodesicBallGrower {
  public:
   explicit GeodesicBallGrower(const SurfaceGraph& graph);
@@ -33,11 +37,19 @@ class GeodesicBallGrower {
 
  private:
   using Entry = std::pair<double, int>;
+  void relax(double distance, int cell, double radius);
+  void settleBucket(std::vector<Entry>& bucket, double radius);
+  void settleHeap(std::vector<Entry>& heap, double radius);
+
   const SurfaceGraph& graph_;
+  double shortest_link_ = 0.0;  ///< [m]
+  bool dial_ = false;           ///< whether the current ball uses one bucket per shortest link
+  double bucket_width_ = 1.0;   ///< [m] of the current ball
   std::vector<double> distance_;
   std::vector<int> touched_;
   std::vector<BallMember> ball_;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue_;
+  std::vector<std::vector<Entry>> buckets_;
+  std::vector<Entry> settled_;
 };
 
 }  // namespace freeform_inspection

@@ -10,6 +10,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "large_buffer_internal.h"
+
 #include "freeform_inspection/curvature.h"
 #include "freeform_inspection/surface_graph.h"
 #include "freeform_inspection/types.h"
@@ -22,7 +24,7 @@ namespace internal {
 /// equals PointIndex(points).nearest(points[i], k). k is clamped to the number of points.
 struct NeighbourTable {
   int k = 0;
-  std::vector<int> indices;
+  LargeVector<int> indices;
 
   const int* of(std::size_t point) const { return indices.data() + point * std::size_t(k); }
 };

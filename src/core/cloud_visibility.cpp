@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "cloud_visibility_internal.h"
+#include "large_buffer_internal.h"
 #include <Eigen/Geometry>
 
 namespace freeform_inspection {
@@ -30,14 +31,23 @@ Eigen::Vector3d spiralDirection(int k, int n) {
   return {r * std::cos(golden_angle * k), r * std::sin(golden_angle * k), z};
 }
 
-// Points seen from `direction` (the viewer at +infinity along it): within the tolerance of the
-// front-most point of their pixel. Each point's facing is added to `facing` / `away`.
-void voteFromDirection(const Points& points,
-                       const Points& normals,
-                       const Eigen::Vector3d& direction,
-                       const VisibilityConfig& config,
-                       std::vector<int>* facing,
-                       std::vector<int>* away) {
+// Per-thread buffers of the depth images, kept across directions.
+struct DepthScratch {
+  LargeVector<std::size_t> pixel;
+  LargeVector<double> front;
+};
+
+// Points seen from `direction` and from its opposite (the viewer at +infinity along each):
+// within the tolerance of the front-most point of their pixel. Both images share the pixels, so
+// one pass projects the points and keeps the nearest depth from either side. Each point's facing
+// is added to `facing` / `away`.
+void voteFromDirectionPair(const Points& points,
+                           const Points& normals,
+                           const Eigen::Vector3d& direction,
+                           const VisibilityConfig& config,
+                           DepthScratch& scratch,
+                           std::vector<int>* facing,
+                           std::vector<int>* away) {
   const Eigen::Vector3d u = direction.unitOrthogonal();
   const Eigen::Vector3d v = direction.cross(u);
   double u_min = std::numeric_limits<double>::infinity();
@@ -52,26 +62,30 @@ void voteFromDirection(const Points& points,
   }
   const auto width = static_cast<std::size_t>((u_max - u_min) / config.pixel) + 1;
   const auto height = static_cast<std::size_t>((v_max - v_min) / config.pixel) + 1;
-  std::vector<std::size_t> pixel(points.size());
-  for (int side = 0; side < 2; ++side) {
-    const Eigen::Vector3d towards = side == 0 ? direction : Eigen::Vector3d(-direction);
-    std::vector<double> front(width * height, -std::numeric_limits<double>::infinity());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const auto x = static_cast<std::size_t>((points[i].dot(u) - u_min) / config.pixel);
-      const auto y = static_cast<std::size_t>((points[i].dot(v) - v_min) / config.pixel);
-      pixel[i] = std::min(y, height - 1) * width + std::min(x, width - 1);
-      front[pixel[i]] = std::max(front[pixel[i]], points[i].dot(towards));
+  scratch.pixel.resize(points.size());
+  // front[2 q] is the largest depth along +direction in pixel q, front[2 q + 1] along −direction.
+  scratch.front.assign(2 * width * height, -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto x = static_cast<std::size_t>((points[i].dot(u) - u_min) / config.pixel);
+    const auto y = static_cast<std::size_t>((points[i].dot(v) - v_min) / config.pixel);
+    const std::size_t q = std::min(y, height - 1) * width + std::min(x, width - 1);
+    scratch.pixel[i] = q;
+    const double depth = points[i].dot(direction);
+    scratch.front[2 * q] = std::max(scratch.front[2 * q], depth);
+    scratch.front[2 * q + 1] = std::max(scratch.front[2 * q + 1], -depth);
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double depth = points[i].dot(direction);
+    const double cosine = normals[i].dot(direction);
+    const std::size_t q = scratch.pixel[i];
+    // Seen from +direction, then from −direction (where depth and facing change sign).
+    if (!(depth < scratch.front[2 * q] - config.depth_tolerance)) {
+      (*facing)[i] += cosine > kMinFacing ? 1 : 0;
+      (*away)[i] += cosine < -kMinFacing ? 1 : 0;
     }
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (points[i].dot(towards) < front[pixel[i]] - config.depth_tolerance) {
-        continue;
-      }
-      const double cosine = normals[i].dot(towards);
-      if (cosine > kMinFacing) {
-        ++(*facing)[i];
-      } else if (cosine < -kMinFacing) {
-        ++(*away)[i];
-      }
+    if (!(-depth < scratch.front[2 * q + 1] - config.depth_tolerance)) {
+      (*facing)[i] += -cosine > kMinFacing ? 1 : 0;
+      (*away)[i] += -cosine < -kMinFacing ? 1 : 0;
     }
   }
 }
@@ -118,14 +132,16 @@ std::vector<signed char> visibilityVotes(const Points& points,
   {
     std::vector<int> my_facing(count, 0);
     std::vector<int> my_away(count, 0);
+    DepthScratch scratch;
 #pragma omp for schedule(dynamic, 1)
     for (int k = 0; k < config.direction_pairs; ++k) {
-      voteFromDirection(points,
-                        normals,
-                        spiralDirection(k, config.direction_pairs),
-                        bounded,
-                        &my_facing,
-                        &my_away);
+      voteFromDirectionPair(points,
+                            normals,
+                            spiralDirection(k, config.direction_pairs),
+                            bounded,
+                            scratch,
+                            &my_facing,
+                            &my_away);
     }
 #pragma omp critical
     for (std::size_t i = 0; i < count; ++i) {  // integer sums: the order does not matter

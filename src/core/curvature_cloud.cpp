@@ -98,9 +98,13 @@ PcaPlane pcaPlane(const Points& points, const int* neighbours, int k) {
   }
   mean /= double(k);
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (int j = 0; j < k; ++j) {
+  for (int j = 0; j < k; ++j) {  // the lower triangle, all the solver reads
     const Eigen::Vector3d d = points[std::size_t(neighbours[j])] - mean;
-    covariance += d * d.transpose();
+    for (int column = 0; column < 3; ++column) {
+      for (int row = column; row < 3; ++row) {
+        covariance(row, column) += d[row] * d[column];
+      }
+    }
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
   solver.computeDirect(covariance);  // closed form: the smallest eigenvalue is well separated
@@ -185,9 +189,9 @@ struct WeightedEdge {
 
 // Every pair of the orientation graph once, with its weight: counted per row, then filled at the
 // row's offset (the same list for any thread count).
-std::vector<WeightedEdge> orientationEdges(const Points& points,
-                                           const Points& normals,
-                                           const Neighbourhoods& hoods) {
+internal::LargeVector<WeightedEdge> orientationEdges(const Points& points,
+                                                     const Points& normals,
+                                                     const Neighbourhoods& hoods) {
   const std::size_t count = points.size();
   const auto signed_count = static_cast<std::ptrdiff_t>(count);
   const auto k = std::size_t(hoods.k);
@@ -203,7 +207,7 @@ std::vector<WeightedEdge> orientationEdges(const Points& points,
     }
   }
   std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-  std::vector<WeightedEdge> edges(offsets.back());
+  internal::LargeVector<WeightedEdge> edges(offsets.back());
 #pragma omp parallel for schedule(dynamic, 1024)
   for (std::ptrdiff_t i = 0; i < signed_count; ++i) {
     const auto point = static_cast<std::size_t>(i);
@@ -220,21 +224,6 @@ std::vector<WeightedEdge> orientationEdges(const Points& points,
     }
   }
   return edges;
-}
-
-// Sorts with both threads: the halves in parallel, then one merge. The order is total, so the
-// result is the same for any thread count.
-void sortEdges(std::vector<WeightedEdge>& edges) {
-  const auto middle = edges.begin() + static_cast<std::ptrdiff_t>(edges.size() / 2);
-#pragma omp parallel for schedule(static, 1)
-  for (int half = 0; half < 2; ++half) {
-    if (half == 0) {
-      std::sort(edges.begin(), middle);
-    } else {
-      std::sort(middle, edges.end());
-    }
-  }
-  std::inplace_merge(edges.begin(), middle, edges.end());
 }
 
 // Union-find with path halving; the root of a set is its smallest member.
@@ -265,40 +254,66 @@ class DisjointSets {
   std::vector<std::uint32_t> parent_;
 };
 
-// The minimum spanning forest (Kruskal) of the orientation graph, with all the points that have
-// a given normal joined beforehand (their orientation is known, so the tree only has to reach
-// them, as a multi-source Prim would), as CSR adjacency.
+// Ranges of the orientation graph at most this long are sorted whole.
+constexpr std::ptrdiff_t kKruskalBaseCase = 2048;
+
+// Filter-Kruskal (Osipov, Sanders and Singler 2009): the lighter half of the edges first, then
+// the heavier half without the edges the lighter one already closed a cycle with. Most of a kNN
+// graph's heavy edges are such, so they are never sorted. Under a strict total order the minimum
+// spanning forest is unique, and the tree edges come out in Kruskal's order.
+void filterKruskal(internal::LargeVector<WeightedEdge>::iterator first,
+                   internal::LargeVector<WeightedEdge>::iterator last,
+                   DisjointSets& sets,
+                   internal::LargeVector<WeightedEdge>& tree) {
+  if (last - first <= kKruskalBaseCase) {
+    std::sort(first, last);
+    for (auto edge = first; edge != last; ++edge) {
+      if (sets.unite(edge->a, edge->b)) {
+        tree.push_back(*edge);
+      }
+    }
+    return;
+  }
+  const auto middle = first + (last - first) / 2;
+  std::nth_element(first, middle, last);
+  filterKruskal(first, middle, sets, tree);
+  const auto open = std::remove_if(middle, last, [&sets](const WeightedEdge& edge) {
+    return sets.find(edge.a) == sets.find(edge.b);
+  });
+  filterKruskal(middle, open, sets, tree);
+}
+
+// The minimum spanning forest of the orientation graph, with all the points that have a given
+// normal joined beforehand (their orientation is known, so the tree only has to reach them, as
+// a multi-source Prim would), as CSR adjacency.
 struct Forest {
   std::vector<std::size_t> offsets;
   std::vector<std::uint32_t> targets;
 };
 
 Forest spanningForest(std::size_t count,
-                      const std::vector<WeightedEdge>& sorted,
+                      internal::LargeVector<WeightedEdge> edges,
                       const std::vector<int>& anchors) {
   DisjointSets sets(count);
   for (std::size_t i = 1; i < anchors.size(); ++i) {
     sets.unite(static_cast<std::uint32_t>(anchors[0]), static_cast<std::uint32_t>(anchors[i]));
   }
-  std::vector<const WeightedEdge*> tree;
+  internal::LargeVector<WeightedEdge> tree;
   tree.reserve(count);
-  for (const WeightedEdge& edge : sorted) {
-    if (sets.unite(edge.a, edge.b)) {
-      tree.push_back(&edge);
-    }
-  }
+  filterKruskal(edges.begin(), edges.end(), sets, tree);
+  edges = {};
   Forest forest;
   forest.offsets.assign(count + 1, 0);
-  for (const WeightedEdge* edge : tree) {
-    ++forest.offsets[edge->a + 1];
-    ++forest.offsets[edge->b + 1];
+  for (const WeightedEdge& edge : tree) {
+    ++forest.offsets[edge.a + 1];
+    ++forest.offsets[edge.b + 1];
   }
   std::partial_sum(forest.offsets.begin(), forest.offsets.end(), forest.offsets.begin());
   forest.targets.resize(forest.offsets.back());
   std::vector<std::size_t> fill(forest.offsets.begin(), forest.offsets.end() - 1);
-  for (const WeightedEdge* edge : tree) {
-    forest.targets[fill[edge->a]++] = edge->b;
-    forest.targets[fill[edge->b]++] = edge->a;
+  for (const WeightedEdge& edge : tree) {
+    forest.targets[fill[edge.a]++] = edge.b;
+    forest.targets[fill[edge.b]++] = edge.a;
   }
   return forest;
 }
@@ -406,10 +421,8 @@ bool orientNormals(const Points& points,
     anchors = visibleAnchors(points, hoods, noise_sigma, normals);
   }
   const Neighbourhoods near{hoods.table, std::min(hoods.k, kOrientationNeighbours)};
-  std::vector<WeightedEdge> edges = orientationEdges(points, normals, near);
-  sortEdges(edges);
-  const Forest forest = spanningForest(points.size(), edges, anchors);
-  edges = {};
+  internal::LargeVector<WeightedEdge> edges = orientationEdges(points, normals, near);
+  const Forest forest = spanningForest(points.size(), std::move(edges), anchors);
   std::vector<char> visited(points.size(), 0);
   for (const int i : anchors) {
     visited[std::size_t(i)] = 1;
@@ -464,11 +477,20 @@ CurvatureFit fitShapeOperator(
     }
     const Eigen::Vector2d t = basis * (points[other] - points[centre]);
     const Eigen::Vector2d g = basis * (normals[other] - normals[centre]);
-    Eigen::Matrix<double, 2, 3> rows;  // unknowns (a, b, c) of S = [a b; b c]
-    rows << t.x(), t.y(), 0.0, 0.0, t.x(), t.y();
-    normal_matrix += rows.transpose() * rows;
-    rhs += rows.transpose() * g;
+    // The two equations of this neighbour, rows [t_x t_y 0] and [0 t_x t_y] over the unknowns
+    // (a, b, c) of S = [a b; b c], added to the normal equations term by term (their zeros
+    // skipped; the sums are the same).
+    normal_matrix(0, 0) += t.x() * t.x();
+    normal_matrix(0, 1) += t.x() * t.y();
+    normal_matrix(1, 1) += t.y() * t.y() + t.x() * t.x();
+    normal_matrix(1, 2) += t.x() * t.y();
+    normal_matrix(2, 2) += t.y() * t.y();
+    rhs(0) += t.x() * g.x();
+    rhs(1) += t.y() * g.x() + t.x() * g.y();
+    rhs(2) += t.y() * g.y();
   }
+  normal_matrix(1, 0) = normal_matrix(0, 1);
+  normal_matrix(2, 1) = normal_matrix(1, 2);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
   eigen.computeDirect(normal_matrix, Eigen::EigenvaluesOnly);
   const Eigen::Vector3d spread = eigen.eigenvalues();
@@ -523,7 +545,8 @@ CurvatureResult computeCloudCurvature(const Points& points,
   std::vector<char> fixed;
   result.normals = initialNormals(points, normals, hoods, fixed, result.on_plane);
   result.signs_guessed = orientNormals(points, hoods, fixed, config.noise_sigma, result.normals);
-  if (fitAllPoints(points, hoods, result) == 0) {
+  const auto fitted = fitAllPoints(points, hoods, result);
+  if (fitted == 0) {
     result.status = Status::failure(StatusCode::kDegenerateInput,
                                     "cloud curvature: no point has a usable curvature fit (all " +
                                         std::to_string(points.size()) +

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
-#include <unordered_map>
 #include <utility>
 
 #include "cloud_neighbours_internal.h"
@@ -204,15 +203,30 @@ std::vector<int> thinCloud(const Points& points, double voxel, std::vector<int>*
     kept = *representative;
     return kept;
   }
+  // (voxel, index) sorted: each voxel's run starts with its lowest-index point. Entries are
+  // numbered in the order of those points, as a scan in index order would first meet them.
   const std::vector<std::uint64_t> keys = voxelKeys(points, voxel);
-  std::unordered_map<std::uint64_t, int> first;
-  first.reserve(points.size());
+  std::vector<std::pair<std::uint64_t, int>> sorted(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto entry = first.emplace(keys[i], static_cast<int>(kept.size()));
-    if (entry.second) {
+    sorted[i] = {keys[i], static_cast<int>(i)};
+  }
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<int> first(points.size(), -1);  // per point: the lowest index of its voxel
+  std::vector<char> is_first(points.size(), 0);
+  for (std::size_t j = 0; j < sorted.size(); ++j) {
+    const bool starts = j == 0 || sorted[j].first != sorted[j - 1].first;
+    const int lowest =
+        starts ? sorted[j].second : first[static_cast<std::size_t>(sorted[j - 1].second)];
+    first[static_cast<std::size_t>(sorted[j].second)] = lowest;
+    is_first[static_cast<std::size_t>(sorted[j].second)] = starts ? 1 : 0;
+  }
+  std::vector<int> entry(points.size(), -1);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (is_first[i]) {
+      entry[i] = static_cast<int>(kept.size());
       kept.push_back(static_cast<int>(i));
     }
-    (*representative)[i] = entry.first->second;
+    (*representative)[i] = entry[static_cast<std::size_t>(first[i])];
   }
   return kept;
 }

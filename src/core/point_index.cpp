@@ -199,7 +199,8 @@ void kdTreeRows(const Points& points,
   }
 }
 
-// Rows for a few `queries` by comparing with every point (cheaper than building a tree).
+// Rows for a few `queries` by comparing with every point (cheaper than building a tree): the k
+// nearest so far kept in a max-heap of (distance, index) pairs, which order as closerThan().
 void bruteForceRows(const Points& points,
                     const std::vector<std::uint32_t>& queries,
                     NeighbourTable& table) {
@@ -207,19 +208,28 @@ void bruteForceRows(const Points& points,
   const auto count = static_cast<std::ptrdiff_t>(queries.size());
 #pragma omp parallel
   {
-    std::vector<std::pair<double, std::uint32_t>> all(points.size());
+    std::vector<std::pair<double, std::uint32_t>> nearest;
+    nearest.reserve(width + 1);
 #pragma omp for schedule(dynamic, 1)
     for (std::ptrdiff_t q = 0; q < count; ++q) {
       const std::size_t point = queries[static_cast<std::size_t>(q)];
+      nearest.clear();
       for (std::size_t j = 0; j < points.size(); ++j) {
-        all[j] = {squaredDistance(points[point], points[j]), static_cast<std::uint32_t>(j)};
+        const std::pair<double, std::uint32_t> candidate{squaredDistance(points[point], points[j]),
+                                                         static_cast<std::uint32_t>(j)};
+        if (nearest.size() < width) {
+          nearest.push_back(candidate);
+          std::push_heap(nearest.begin(), nearest.end());
+        } else if (candidate < nearest.front()) {
+          std::pop_heap(nearest.begin(), nearest.end());
+          nearest.back() = candidate;
+          std::push_heap(nearest.begin(), nearest.end());
+        }
       }
-      const auto kth = all.begin() + static_cast<std::ptrdiff_t>(width - 1);
-      std::nth_element(all.begin(), kth, all.end());
-      std::sort(all.begin(), kth);
+      std::sort_heap(nearest.begin(), nearest.end());
       int* row = table.indices.data() + point * width;
       for (std::size_t j = 0; j < width; ++j) {
-        row[j] = static_cast<int>(all[j].second);
+        row[j] = static_cast<int>(nearest[j].second);
       }
     }
   }

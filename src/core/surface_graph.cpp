@@ -128,6 +128,8 @@ void linkCells(const std::vector<SurfaceEdge>& edges, SurfaceGraph* graph) {
   graph->offsets.assign(cells + 1, 0);
   graph->neighbours.clear();
   graph->lengths.clear();
+  graph->neighbours.reserve(buckets.size());  // an upper bound: no reallocation
+  graph->lengths.reserve(buckets.size());
   for (std::size_t from = 0; from < cells; ++from) {
     const auto first = buckets.begin() + static_cast<std::ptrdiff_t>(start[from]);
     const auto last = buckets.begin() + static_cast<std::ptrdiff_t>(start[from + 1]);
