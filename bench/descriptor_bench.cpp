@@ -2,9 +2,10 @@
 // Copyright 2026 The freeform_inspection authors
 //
 // descriptor_bench: time and peak memory of the multiscale descriptors on the sample blade at a
-// chosen size, as a mesh or as a cloud, optionally with descriptor.coarse_ball_cells set. One
-// JSON line per run; bench/run_descriptor_bench.sh runs the sizes of docs/benchmarks.md, one
-// process each so peak memory belongs to one size.
+// chosen size, as a mesh, as a cloud over the whole part, or as one unorganized view of it (what
+// a scanner delivers), optionally with descriptor.coarse_ball_cells set. One JSON line per run;
+// bench/run_descriptor_bench.sh runs the sizes of docs/benchmarks.md, one process each so peak
+// memory belongs to one size.
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -16,7 +17,9 @@
 
 #include "freeform_inspection/descriptor.h"
 #include "freeform_inspection/mesh.h"
+#include "freeform_inspection/mesh_query.h"
 #include "freeform_inspection/surface_sampling.h"
+#include "freeform_inspection/virtual_scanner.h"
 
 namespace fi = freeform_inspection;
 
@@ -41,6 +44,26 @@ fi::TriangleMesh bladeMesh(double vertices) {
   return mesh;
 }
 
+// One view of the CAD by the virtual structured-light camera (random pose of seed 1, the part
+// filling the image), its measured points kept as an unorganized cloud of about `points`: a
+// first scan at VGA tells how many pixels see the part, the resolution is scaled to match.
+fi::Points singleView(const fi::TriangleMesh& cad, double points) {
+  const fi::MeshQuery query(cad);
+  fi::VirtualScannerConfig config;  // noise-free, as the cloud mode's samples
+  const fi::VirtualScan probe = fi::makeVirtualScan(query, config);
+  const double scale =
+      std::sqrt(points / static_cast<double>(std::max<std::size_t>(probe.counts.valid, 1)));
+  config.width = static_cast<int>(std::lround(config.width * scale));
+  config.height = static_cast<int>(std::lround(config.height * scale));
+  fi::Points view;
+  for (const auto& p : fi::makeVirtualScan(query, config).scan.points) {
+    if (p.allFinite()) {
+      view.push_back(p);
+    }
+  }
+  return view;
+}
+
 long peakMemoryKiB() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -51,8 +74,9 @@ long peakMemoryKiB() {
 
 int main(int argc, char** argv) {
   if ((argc != 3 && argc != 4) ||
-      (std::string(argv[1]) != "mesh" && std::string(argv[1]) != "cloud")) {
-    std::cerr << "usage: descriptor_bench mesh|cloud POINTS [COARSE_BALL_CELLS]\n";
+      (std::string(argv[1]) != "mesh" && std::string(argv[1]) != "cloud" &&
+       std::string(argv[1]) != "view")) {
+    std::cerr << "usage: descriptor_bench mesh|cloud|view POINTS [COARSE_BALL_CELLS]\n";
     return 2;
   }
   const std::string mode = argv[1];
@@ -69,8 +93,10 @@ int main(int argc, char** argv) {
     fi::TriangleMesh mesh = bladeMesh(size);
     points = std::move(mesh.vertices);
     faces = std::move(mesh.faces);
-  } else {
+  } else if (mode == "cloud") {
     points = fi::sampleSurface(cad, static_cast<std::size_t>(size), 1).points;
+  } else {
+    points = singleView(cad, size);
   }
   const long memory_before = peakMemoryKiB();
   const auto start = std::chrono::steady_clock::now();

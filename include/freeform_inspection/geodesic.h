@@ -41,15 +41,21 @@ class GeodesicBallGrower {
   void settleBucket(std::vector<Entry>& bucket, double radius);
   void settleHeap(std::vector<Entry>& heap, double radius);
 
-  const SurfaceGraph& graph_;
-  double shortest_link_ = 0.0;  ///< [m]
-  bool dial_ = false;           ///< whether the current ball uses one bucket per shortest link
-  double bucket_width_ = 1.0;   ///< [m] of the current ball
+  struct Link {
+    int to;
+    double length;  ///< [m]
+  };
+
+  std::vector<std::size_t> offsets_;  ///< the graph's CSR, with each link's target and length
+  std::vector<Link> links_;           ///< side by side: one cache line per cell's links
+  double shortest_link_ = 0.0;        ///< [m]
+  bool dial_ = false;                 ///< whether the current ball uses one bucket per link
+  double buckets_per_metre_ = 1.0;    ///< of the current ball
   std::vector<double> distance_;
-  std::vector<int> touched_;
+  std::vector<char> settled_;  ///< per cell, in the current ball
   std::vector<BallMember> ball_;
   std::vector<std::vector<Entry>> buckets_;
-  std::vector<Entry> settled_;
+  std::vector<Entry> bucket_settled_;
 };
 
 }  // namespace freeform_inspection
