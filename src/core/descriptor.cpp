@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "cloud_neighbours_internal.h"
+#include <parallel/algorithm>
 
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/mesh_adjacency.h"
@@ -210,8 +211,8 @@ std::vector<int> thinCloud(const Points& points, double voxel, std::vector<int>*
   for (std::size_t i = 0; i < points.size(); ++i) {
     sorted[i] = {keys[i], static_cast<int>(i)};
   }
-  std::sort(sorted.begin(), sorted.end());
-  std::vector<int> first(points.size(), -1);  // per point: the lowest index of its voxel
+  __gnu_parallel::sort(sorted.begin(), sorted.end());  // unique pairs: any thread count agrees
+  std::vector<int> first(points.size(), -1);           // per point: the lowest index of its voxel
   std::vector<char> is_first(points.size(), 0);
   for (std::size_t j = 0; j < sorted.size(); ++j) {
     const bool starts = j == 0 || sorted[j].first != sorted[j - 1].first;

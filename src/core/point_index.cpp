@@ -12,6 +12,7 @@
 #include "cloud_neighbours_internal.h"
 #include "median_internal.h"
 #include <nanoflann.hpp>
+#include <parallel/algorithm>
 
 namespace freeform_inspection {
 namespace {
@@ -263,7 +264,7 @@ class PointGrid {
     for (std::size_t i = 0; i < n; ++i) {
       keyed[i] = {key(coordinates(points[i])), static_cast<std::uint32_t>(i)};
     }
-    std::sort(keyed.begin(), keyed.end());
+    __gnu_parallel::sort(keyed.begin(), keyed.end());  // unique keys: any thread count agrees
     order_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       order_[i] = keyed[i].second;

@@ -125,22 +125,29 @@ void linkCells(const std::vector<SurfaceEdge>& edges, SurfaceGraph* graph) {
       buckets[fill[static_cast<std::size_t>(cb)]++] = ca;
     }
   }
+  // Each cell's bucket sorted and made unique in parallel, then copied out at its offset.
   graph->offsets.assign(cells + 1, 0);
-  graph->neighbours.clear();
-  graph->lengths.clear();
-  graph->neighbours.reserve(buckets.size());  // an upper bound: no reallocation
-  graph->lengths.reserve(buckets.size());
-  for (std::size_t from = 0; from < cells; ++from) {
+  const auto signed_cells = static_cast<std::ptrdiff_t>(cells);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::ptrdiff_t c = 0; c < signed_cells; ++c) {
+    const auto from = static_cast<std::size_t>(c);
     const auto first = buckets.begin() + static_cast<std::ptrdiff_t>(start[from]);
     const auto last = buckets.begin() + static_cast<std::ptrdiff_t>(start[from + 1]);
     std::sort(first, last);
-    const auto end = std::unique(first, last);
-    for (auto to = first; to != end; ++to) {
-      graph->neighbours.push_back(*to);
-      graph->lengths.push_back(
-          (graph->centroids[from] - graph->centroids[static_cast<std::size_t>(*to)]).norm());
+    graph->offsets[from + 1] = static_cast<std::size_t>(std::unique(first, last) - first);
+  }
+  std::partial_sum(graph->offsets.begin(), graph->offsets.end(), graph->offsets.begin());
+  graph->neighbours.resize(graph->offsets.back());
+  graph->lengths.resize(graph->offsets.back());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::ptrdiff_t c = 0; c < signed_cells; ++c) {
+    const auto from = static_cast<std::size_t>(c);
+    for (std::size_t e = graph->offsets[from]; e < graph->offsets[from + 1]; ++e) {
+      const int to = buckets[start[from] + (e - graph->offsets[from])];
+      graph->neighbours[e] = to;
+      graph->lengths[e] =
+          (graph->centroids[from] - graph->centroids[static_cast<std::size_t>(to)]).norm();
     }
-    graph->offsets[from + 1] = graph->neighbours.size();
   }
 }
 
