@@ -545,8 +545,7 @@ CurvatureResult computeCloudCurvature(const Points& points,
   std::vector<char> fixed;
   result.normals = initialNormals(points, normals, hoods, fixed, result.on_plane);
   result.signs_guessed = orientNormals(points, hoods, fixed, config.noise_sigma, result.normals);
-  const auto fitted = fitAllPoints(points, hoods, result);
-  if (fitted == 0) {
+  if (fitAllPoints(points, hoods, result) == 0) {
     result.status = Status::failure(StatusCode::kDegenerateInput,
                                     "cloud curvature: no point has a usable curvature fit (all " +
                                         std::to_string(points.size()) +

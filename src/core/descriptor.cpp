@@ -213,17 +213,14 @@ std::vector<int> thinCloud(const Points& points, double voxel, std::vector<int>*
   }
   __gnu_parallel::sort(sorted.begin(), sorted.end());  // unique pairs: any thread count agrees
   std::vector<int> first(points.size(), -1);           // per point: the lowest index of its voxel
-  std::vector<char> is_first(points.size(), 0);
   for (std::size_t j = 0; j < sorted.size(); ++j) {
     const bool starts = j == 0 || sorted[j].first != sorted[j - 1].first;
-    const int lowest =
+    first[static_cast<std::size_t>(sorted[j].second)] =
         starts ? sorted[j].second : first[static_cast<std::size_t>(sorted[j - 1].second)];
-    first[static_cast<std::size_t>(sorted[j].second)] = lowest;
-    is_first[static_cast<std::size_t>(sorted[j].second)] = starts ? 1 : 0;
   }
   std::vector<int> entry(points.size(), -1);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (is_first[i]) {
+    if (first[i] == static_cast<int>(i)) {  // the voxel's representative
       entry[i] = static_cast<int>(kept.size());
       kept.push_back(static_cast<int>(i));
     }
