@@ -111,6 +111,119 @@ bool betterFit(const Fit& a, const Fit& b) {
   return a.rarity_rank < b.rarity_rank;
 }
 
+// A consistent triplet: three scan features and one CAD candidate of each.
+struct Triplet {
+  int feature[3];
+  int cad[3];
+};
+
+// Every triplet whose three sides pass the pair check, rarest features first, up to `max_fits`
+// (serial and cheap: only table lookups and the collinearity test).
+std::vector<Triplet> enumerateTriplets(const SurfaceGraph& scan,
+                                       const std::vector<FeatureCandidates>& features,
+                                       const PairTable& consistent,
+                                       double min_side,
+                                       std::size_t max_fits) {
+  std::vector<Triplet> triplets;
+  const std::size_t f_count = features.size();
+  for (std::size_t i = 0; i < f_count && triplets.size() < max_fits; ++i) {
+    for (std::size_t j = i + 1; j < f_count && triplets.size() < max_fits; ++j) {
+      if (consistent[i][j].empty()) {
+        continue;
+      }
+      for (std::size_t k = j + 1; k < f_count && triplets.size() < max_fits; ++k) {
+        if (consistent[i][k].empty() || consistent[j][k].empty()) {
+          continue;
+        }
+        const Eigen::Vector3d s0 = cellOf(scan, features[i].feature).point;
+        const Eigen::Vector3d s1 = cellOf(scan, features[j].feature).point;
+        const Eigen::Vector3d s2 = cellOf(scan, features[k].feature).point;
+        const double doubled_area = (s1 - s0).cross(s2 - s0).norm();
+        const double longest = std::max({(s1 - s0).norm(), (s2 - s0).norm(), (s2 - s1).norm()});
+        if (doubled_area / longest < 0.5 * min_side) {
+          continue;  // nearly collinear: the rotation about the line is undetermined
+        }
+        const std::size_t nj = features[j].cad.size();
+        const std::size_t nk = features[k].cad.size();
+        for (std::size_t a = 0; a < features[i].cad.size(); ++a) {
+          for (std::size_t b = 0; b < nj; ++b) {
+            if (consistent[i][j][a * nj + b] == 0) {
+              continue;
+            }
+            for (std::size_t c = 0; c < nk && triplets.size() < max_fits; ++c) {
+              if (consistent[i][k][a * nk + c] != 0 && consistent[j][k][b * nk + c] != 0) {
+                triplets.push_back({{static_cast<int>(i), static_cast<int>(j), static_cast<int>(k)},
+                                    {features[i].cad[a], features[j].cad[b], features[k].cad[c]}});
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  return triplets;
+}
+
+// The rigid fit of every triplet whose normals agree after it, scored by eq. 14, in the
+// triplets' order. The fits are independent, so they run in parallel; the list is the same for
+// any thread count.
+std::vector<Fit> fitTriplets(const SurfaceGraph& scan,
+                             const SurfaceGraph& cad,
+                             const CorrespondenceResult& candidates,
+                             const std::vector<Triplet>& triplets,
+                             double tolerance,
+                             double normal_tolerance_deg,
+                             bool oriented_normals) {
+  const double min_cos = std::cos(normal_tolerance_deg * kDegree);
+  const auto& features = candidates.features;
+  // Blocks of triplets, each filling its own list, joined in block order.
+  constexpr std::size_t kBlock = 1024;
+  const std::size_t blocks = (triplets.size() + kBlock - 1) / kBlock;
+  std::vector<std::vector<Fit>> block_fits(blocks);
+  const auto signed_blocks = static_cast<std::ptrdiff_t>(blocks);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t block = 0; block < signed_blocks; ++block) {
+    const std::size_t first = static_cast<std::size_t>(block) * kBlock;
+    const std::size_t last = std::min(triplets.size(), first + kBlock);
+    for (std::size_t t = first; t < last; ++t) {
+      const Triplet& triplet = triplets[t];
+      Oriented s[3];
+      Eigen::Matrix3d scan_points;
+      Eigen::Matrix3d cad_points;
+      for (int m = 0; m < 3; ++m) {
+        s[m] = cellOf(scan, features[static_cast<std::size_t>(triplet.feature[m])].feature);
+        scan_points.col(m) = s[m].point;
+        cad_points.col(m) = cad.centroids[static_cast<std::size_t>(triplet.cad[m])];
+      }
+      Fit fit;
+      fit.pose.T_cad_scan = rigidFit(scan_points, cad_points);
+      bool normals_agree = true;
+      for (int m = 0; m < 3 && normals_agree; ++m) {
+        const Eigen::Vector3d n = fit.pose.T_cad_scan.linear() * s[m].normal;
+        const Eigen::Vector3d& nc = cad.normals[static_cast<std::size_t>(triplet.cad[m])];
+        const double agreement = oriented_normals ? n.dot(nc) : std::abs(n.dot(nc));
+        normals_agree = !hasNormal(n) || !hasNormal(nc) || agreement >= min_cos;
+      }
+      if (!normals_agree) {
+        continue;
+      }
+      for (int m = 0; m < 3; ++m) {
+        fit.pose.feature_triplet[m] = triplet.feature[m];
+        fit.pose.cad_triplet[m] = triplet.cad[m];
+      }
+      fit.rarity_rank =
+          static_cast<double>(triplet.feature[0] + triplet.feature[1] + triplet.feature[2]);
+      scoreByFeatures(scan, cad, candidates, tolerance, &fit.pose);
+      block_fits[static_cast<std::size_t>(block)].push_back(fit);
+    }
+  }
+  std::vector<Fit> fits;
+  for (const auto& list : block_fits) {
+    fits.insert(fits.end(), list.begin(), list.end());
+  }
+  return fits;
+}
+
 }  // namespace
 
 std::vector<std::string> validate(const GlobalRegistrationConfig& config) {
@@ -312,75 +425,11 @@ GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
     }
   }
 
-  const double min_cos = std::cos(config.normal_tolerance_deg * kDegree);
-  std::vector<Fit> fits;
-  std::size_t evaluated = 0;
-  for (std::size_t i = 0; i < f_count && evaluated < config.max_fits; ++i) {
-    for (std::size_t j = i + 1; j < f_count && evaluated < config.max_fits; ++j) {
-      if (consistent[i][j].empty()) {
-        continue;
-      }
-      for (std::size_t k = j + 1; k < f_count && evaluated < config.max_fits; ++k) {
-        if (consistent[i][k].empty() || consistent[j][k].empty()) {
-          continue;
-        }
-        const Oriented s[3] = {cellOf(scan, features[i].feature),
-                               cellOf(scan, features[j].feature),
-                               cellOf(scan, features[k].feature)};
-        const double doubled_area = (s[1].point - s[0].point).cross(s[2].point - s[0].point).norm();
-        const double longest = std::max({(s[1].point - s[0].point).norm(),
-                                         (s[2].point - s[0].point).norm(),
-                                         (s[2].point - s[1].point).norm()});
-        if (doubled_area / longest < 0.5 * min_side) {
-          continue;  // nearly collinear: the rotation about the line is undetermined
-        }
-        Eigen::Matrix3d scan_points;
-        scan_points << s[0].point, s[1].point, s[2].point;
-        const std::size_t nj = features[j].cad.size();
-        const std::size_t nk = features[k].cad.size();
-        for (std::size_t a = 0; a < features[i].cad.size(); ++a) {
-          for (std::size_t b = 0; b < nj; ++b) {
-            if (consistent[i][j][a * nj + b] == 0) {
-              continue;
-            }
-            for (std::size_t c = 0; c < nk && evaluated < config.max_fits; ++c) {
-              if (consistent[i][k][a * nk + c] == 0 || consistent[j][k][b * nk + c] == 0) {
-                continue;
-              }
-              ++result.consistent_triplets;
-              const int cad_cells[3] = {features[i].cad[a], features[j].cad[b], features[k].cad[c]};
-              Eigen::Matrix3d cad_points;
-              for (int m = 0; m < 3; ++m) {
-                cad_points.col(m) = cad.centroids[static_cast<std::size_t>(cad_cells[m])];
-              }
-              ++evaluated;
-              Fit fit;
-              fit.pose.T_cad_scan = rigidFit(scan_points, cad_points);
-              bool normals_agree = true;
-              for (int m = 0; m < 3 && normals_agree; ++m) {
-                const Eigen::Vector3d n = fit.pose.T_cad_scan.linear() * s[m].normal;
-                const Eigen::Vector3d& nc = cad.normals[static_cast<std::size_t>(cad_cells[m])];
-                const double agreement = oriented_normals ? n.dot(nc) : std::abs(n.dot(nc));
-                normals_agree = !hasNormal(n) || !hasNormal(nc) || agreement >= min_cos;
-              }
-              if (!normals_agree) {
-                continue;
-              }
-              const int feature_indices[3] = {
-                  static_cast<int>(i), static_cast<int>(j), static_cast<int>(k)};
-              for (int m = 0; m < 3; ++m) {
-                fit.pose.feature_triplet[m] = feature_indices[m];
-                fit.pose.cad_triplet[m] = cad_cells[m];
-              }
-              fit.rarity_rank = static_cast<double>(i + j + k);
-              scoreByFeatures(scan, cad, candidates, tolerance, &fit.pose);
-              fits.push_back(fit);
-            }
-          }
-        }
-      }
-    }
-  }
+  const std::vector<Triplet> triplets =
+      enumerateTriplets(scan, features, consistent, min_side, config.max_fits);
+  result.consistent_triplets = triplets.size();
+  std::vector<Fit> fits = fitTriplets(
+      scan, cad, candidates, triplets, tolerance, config.normal_tolerance_deg, oriented_normals);
   if (fits.empty()) {
     result.status =
         Status::failure(StatusCode::kRegistrationFailed,
