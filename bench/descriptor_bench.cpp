@@ -5,10 +5,13 @@
 // chosen size, as a mesh, as a cloud over the whole part, or as one unorganized view of it (what
 // a scanner delivers), optionally with descriptor.coarse_ball_cells set. One JSON line per run;
 // bench/run_descriptor_bench.sh runs the sizes of docs/benchmarks.md, one process each so peak
-// memory belongs to one size.
+// memory belongs to one size. With FI_DESCRIPTOR_DUMP=FILE set it also writes the descriptors,
+// normals and point cells as raw binary, so a change meant to leave them bit for bit as they were
+// can be checked with `cmp` against the dump of the previous build.
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -72,6 +75,24 @@ long peakMemoryKiB() {
 
 }  // namespace
 
+// Raw doubles of the descriptors (row-major by cell) and normals, then the point cells as ints.
+void dumpDescriptors(const fi::DescriptorResult& result, const std::string& path) {
+  std::ofstream out(path, std::ios::binary);
+  const auto write = [&](const void* data, std::size_t bytes) {
+    out.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
+  };
+  for (Eigen::Index c = 0; c < result.cell_values.rows(); ++c) {
+    for (Eigen::Index k = 0; k < result.cell_values.cols(); ++k) {
+      const double v = result.cell_values(c, k);
+      write(&v, sizeof v);
+    }
+  }
+  for (const Eigen::Vector3d& n : result.curvature.normals) {
+    write(n.data(), 3 * sizeof(double));
+  }
+  write(result.graph.point_cell.data(), result.graph.point_cell.size() * sizeof(int));
+}
+
 int main(int argc, char** argv) {
   if ((argc != 3 && argc != 4) ||
       (std::string(argv[1]) != "mesh" && std::string(argv[1]) != "cloud" &&
@@ -107,5 +128,8 @@ int main(int argc, char** argv) {
             << ", \"status\": \"" << fi::toString(result.status.code)
             << "\", \"seconds\": " << seconds << ", \"peak_rss_mib\": " << peakMemoryKiB() / 1024.0
             << ", \"rss_before_mib\": " << memory_before / 1024.0 << "}" << std::endl;
+  if (const char* dump = std::getenv("FI_DESCRIPTOR_DUMP")) {
+    dumpDescriptors(result, dump);
+  }
   return result.status.ok() ? 0 : 1;
 }
