@@ -73,8 +73,6 @@ long peakMemoryKiB() {
   return usage.ru_maxrss;
 }
 
-}  // namespace
-
 // Raw doubles of the descriptors (row-major by cell) and normals, then the point cells as ints.
 void dumpDescriptors(const fi::DescriptorResult& result, const std::string& path) {
   std::ofstream out(path, std::ios::binary);
@@ -92,6 +90,8 @@ void dumpDescriptors(const fi::DescriptorResult& result, const std::string& path
   }
   write(result.graph.point_cell.data(), result.graph.point_cell.size() * sizeof(int));
 }
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if ((argc != 3 && argc != 4) ||
