@@ -13,7 +13,8 @@
 // Gaussian noise along their normals, at a random pose (a mesh scan, faces included).
 // --camera registers one range image of the virtual scanner per case instead. Environment:
 // FI_KEEP_GRID keeps a camera view's grid, FI_NO_NORMALS drops the scan's normals, FI_VERBOSE
-// prints every case's status message under its line.
+// prints every case's status message under its line, FI_DIAG how the pose relates to the truth
+// (printTruthDiagnostics).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -45,6 +46,60 @@ struct Options {
   bool camera = false;  // --camera: one VGA range image (virtual_scanner.h) per case
   std::string config;   // --config: a pipeline YAML (config/default.yaml's keys); default: none
 };
+
+// Share of the scan's finite points within `reach` of the CAD at pose T.
+double shareOnCad(const fi::Model& model,
+                  const fi::Points& points,
+                  const Eigen::Isometry3d& T,
+                  double reach) {
+  std::size_t near = 0;
+  std::size_t finite = 0;
+  for (const auto& p : points) {
+    if (p.allFinite()) {
+      ++finite;
+      near += model.query().closest(T * p, reach).found ? 1 : 0;
+    }
+  }
+  return static_cast<double>(near) / static_cast<double>(std::max<std::size_t>(finite, 1));
+}
+
+// FI_DIAG: how the reported pose relates to the truth. The share of the scan each explains
+// within `reach`, the motion truth·result⁻¹, and every model symmetry S with how far S·result
+// lands from the truth: a wrong pose whose twin is the truth shows as one row near 0°, 0 m.
+void printTruthDiagnostics(const fi::Model& model,
+                           const fi::Scan& scan,
+                           const Eigen::Isometry3d& truth,
+                           const fi::InspectionResult& result,
+                           double reach) {
+  constexpr double kDeg = 180.0 / 3.14159265358979323846;
+  const Eigen::Isometry3d& found = result.T_cad_scan;
+  std::printf("    truth explains %.3f of the scan, the result %.3f (within %.3g m)\n",
+              shareOnCad(model, scan.points, truth, reach),
+              shareOnCad(model, scan.points, found, reach),
+              reach);
+  const Eigen::Isometry3d relative = truth * found.inverse();
+  const Eigen::AngleAxisd turn(relative.linear());
+  std::printf("    truth * result^-1: %.2f deg about (%.3f %.3f %.3f), t (%.4f %.4f %.4f) m\n",
+              turn.angle() * kDeg,
+              turn.axis().x(),
+              turn.axis().y(),
+              turn.axis().z(),
+              relative.translation().x(),
+              relative.translation().y(),
+              relative.translation().z());
+  for (const fi::Symmetry& symmetry : model.symmetries()) {
+    const Eigen::Isometry3d twin = symmetry.S * found;
+    std::printf("    symmetry (score %.3f): S * result is %.2f deg and %.4f m from the truth\n",
+                symmetry.score,
+                fi::bench::rotationErrorDeg(twin, truth),
+                (twin.translation() - truth.translation()).norm());
+  }
+  for (const Eigen::Isometry3d& alternative : result.alternatives) {
+    std::printf("    alternative: %.2f deg from the truth, explains %.3f\n",
+                fi::bench::rotationErrorDeg(alternative, truth),
+                shareOnCad(model, scan.points, alternative, reach));
+  }
+}
 
 // The CAD mesh with noise of σ along the area-weighted vertex normals, moved like `generated`.
 fi::Scan noisyMeshCopy(const fi::TriangleMesh& mesh,
@@ -242,6 +297,9 @@ int main(int argc, char** argv) {
           result.counts.correspondences,
           seconds,
           !right && is_ok ? "  <-- WRONG POSE REPORTED OK" : "");
+      if (std::getenv("FI_DIAG") != nullptr) {
+        printTruthDiagnostics(model, scan, truth, result, 3.0 * config.noise_ratio * diagonal);
+      }
       if (std::getenv("FI_VERBOSE") != nullptr) {
         std::printf("    %s\n   ", result.status.message.c_str());
         for (const auto& timing : result.timings) {

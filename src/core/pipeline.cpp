@@ -103,34 +103,48 @@ std::vector<RefinedPose> refineAll(const Model& model,
   return refined;
 }
 
-// The best verified hypotheses, refined; then the symmetric twins S·T and S⁻¹·T of the best
-// (symmetry.h), so a symmetric part cannot be reported with one of its twins unseen.
-std::vector<RefinedPose> refineHypotheses(const Model& model,
-                                          const std::vector<PoseHypothesis>& hypotheses,
-                                          const VerificationSet& set,
-                                          const PipelineConfig& config) {
+// The symmetric twins S·T and S⁻¹·T of `pose` (symmetry.h), refined.
+std::vector<RefinedPose> refinedTwins(const Model& model,
+                                      const Eigen::Isometry3d& pose,
+                                      const VerificationSet& set,
+                                      const PipelineConfig& config) {
+  std::vector<Eigen::Isometry3d> twins;
+  for (const Symmetry& symmetry : model.symmetries()) {
+    twins.push_back(symmetry.S * pose);
+    twins.push_back(symmetry.S.inverse() * pose);
+  }
+  return refineAll(model, twins, set, config);
+}
+
+// The best verified hypotheses, refined, then the twins of the best, so a symmetric part cannot
+// be reported with one of its twins unseen. `twinned` is the pose whose twins were added.
+struct RefinedHypotheses {
+  std::vector<RefinedPose> poses;  // best score first
+  Eigen::Isometry3d twinned = Eigen::Isometry3d::Identity();
+};
+
+RefinedHypotheses refineHypotheses(const Model& model,
+                                   const std::vector<PoseHypothesis>& hypotheses,
+                                   const VerificationSet& set,
+                                   const PipelineConfig& config) {
   const auto count = std::min<std::size_t>(
       hypotheses.size(), static_cast<std::size_t>(config.registration.refined_hypotheses));
   std::vector<Eigen::Isometry3d> starts;
   for (std::size_t h = 0; h < count; ++h) {
     starts.push_back(hypotheses[h].T_cad_scan);
   }
-  std::vector<RefinedPose> refined = refineAll(model, starts, set, config);
+  RefinedHypotheses out;
+  out.poses = refineAll(model, starts, set, config);
   const auto by_score = [](const RefinedPose& a, const RefinedPose& b) {
     return a.score > b.score;
   };
-  std::stable_sort(refined.begin(), refined.end(), by_score);
-  const Eigen::Isometry3d best = refined.front().T_cad_scan;
-  std::vector<Eigen::Isometry3d> twins;
-  for (const Symmetry& symmetry : model.symmetries()) {
-    twins.push_back(symmetry.S * best);
-    twins.push_back(symmetry.S.inverse() * best);
+  std::stable_sort(out.poses.begin(), out.poses.end(), by_score);
+  out.twinned = out.poses.front().T_cad_scan;
+  for (const RefinedPose& twin : refinedTwins(model, out.twinned, set, config)) {
+    out.poses.push_back(twin);
   }
-  for (const RefinedPose& twin : refineAll(model, twins, set, config)) {
-    refined.push_back(twin);
-  }
-  std::stable_sort(refined.begin(), refined.end(), by_score);
-  return refined;
+  std::stable_sort(out.poses.begin(), out.poses.end(), by_score);
+  return out;
 }
 
 // Features → candidates → triplets → verification → ICP. Fills the registration fields of
@@ -234,7 +248,8 @@ void registerScan(const Model& model,
   }
   const VerificationSet set =
       makeVerificationSet(scan.graph, config.registration.verification_points, oriented);
-  const std::vector<RefinedPose> refined = refineHypotheses(model, hypotheses, set, config);
+  const RefinedHypotheses hypotheses_refined = refineHypotheses(model, hypotheses, set, config);
+  const std::vector<RefinedPose>& refined = hypotheses_refined.poses;
   watch.lap("global_registration");
   if (!watch.proceed("icp", 0.75)) {
     return;
@@ -368,6 +383,21 @@ void registerScan(const Model& model,
     result->rmse = std::numeric_limits<double>::quiet_NaN();
     watch.lap("verification");
     return;
+  }
+  // The ranking may have put a twin of the quick ranking's best first, and that twin's own twins
+  // were never tried: one of them may explain the scan as well (a bar seen from one side, where
+  // the winning twin had slid along the bar and the true pose was its half turn).
+  if (separatePoses(hypotheses_refined.twinned, result->T_cad_scan, reference, cell)) {
+    for (const RefinedPose& twin : refinedTwins(model, result->T_cad_scan, set, config)) {
+      const bool apart =
+          std::all_of(contenders.begin(), contenders.end(), [&](const RefinedPose& c) {
+            return separatePoses(c.T_cad_scan, twin.T_cad_scan, reference, cell);
+          });
+      if (apart) {
+        fine_scores.push_back(fineScore(twin.T_cad_scan));
+        contenders.push_back(twin);
+      }
+    }
   }
   // Another distinct pose that explains the scan about as well: say so, with all of them,
   // unless the points the two explain differently side clearly with the best (scanPrefers).
