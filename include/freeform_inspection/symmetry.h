@@ -24,6 +24,9 @@ struct Symmetry {
   double score = 0.0;  ///< share of the model's cells that S maps onto the model surface
 };
 
+/// Self-match score a motion needs to count as a symmetry of the model.
+constexpr double kDefaultSymmetryScore = 0.6;
+
 /// @brief Symmetries other than the identity whose self-match score is at least `min_score`,
 /// best first. Deterministic.
 /// @param cad the model's descriptors (cells, values, radii)
@@ -32,6 +35,6 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
                                      const MeshQuery& query,
                                      double cell_size,
                                      double diagonal,
-                                     double min_score = 0.6);
+                                     double min_score = kDefaultSymmetryScore);
 
 }  // namespace freeform_inspection

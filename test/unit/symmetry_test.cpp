@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+// Model symmetries (symmetry.h) on a shape whose symmetries are known: a box.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "freeform_inspection/model.h"
+#include "freeform_inspection/symmetry.h"
+#include "test_shapes.h"
+
+namespace freeform_inspection {
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+// The farthest any corner of `box` lands from the nearest corner after S [m].
+double cornerMismatch(const TriangleMesh& box, const Eigen::Isometry3d& S) {
+  double worst = 0.0;
+  for (const auto& corner : box.vertices) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& other : box.vertices) {
+      nearest = std::min(nearest, (S * corner - other).norm());
+    }
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
+// A 100 × 60 × 40 mm box lies on itself after a half turn about each of its axes and after no
+// other motion but the identity (its sides all differ).
+const Eigen::Vector3d kHalfExtent(0.05, 0.03, 0.02);
+
+TEST(Symmetry, BoxHasItsThreeHalfTurnsAndNothingElseMapsItWhole) {
+  const TriangleMesh box = test::makeBox(kHalfExtent);
+  const Model model(box, "box", "test");
+  ASSERT_TRUE(model.descriptors().status.ok());
+  const double diagonal = model.bounds().diagonal();
+  const std::vector<Symmetry> whole = findSymmetries(
+      model.descriptors(), model.query(), model.cellSize(), diagonal, /*min_score=*/0.9);
+  ASSERT_EQ(whole.size(), 3u);
+  bool turned_about[3] = {false, false, false};
+  for (const Symmetry& symmetry : whole) {
+    const Eigen::AngleAxisd turn(symmetry.S.linear());
+    EXPECT_NEAR(turn.angle(), 180.0 * kDegree, 1.0 * kDegree);
+    EXPECT_LT(cornerMismatch(box, symmetry.S), 0.005 * diagonal);
+    EXPECT_GE(symmetry.score, 0.9);
+    Eigen::Index axis = 0;
+    EXPECT_GT(turn.axis().cwiseAbs().maxCoeff(&axis), std::cos(1.0 * kDegree));
+    turned_about[axis] = true;
+  }
+  EXPECT_TRUE(turned_about[0] && turned_about[1] && turned_about[2]);
+}
+
+TEST(Symmetry, ModelKeepsPartialSelfMatchesBestFirst) {
+  // The model's list (the default threshold) holds the whole symmetries and may add motions that
+  // map only part of the box onto itself: every entry meets the threshold, none is the identity,
+  // and they come best first.
+  const Model model(test::makeBox(kHalfExtent), "box", "test");
+  const std::vector<Symmetry>& symmetries = model.symmetries();
+  ASSERT_GE(symmetries.size(), 3u);
+  for (std::size_t i = 0; i < symmetries.size(); ++i) {
+    const Symmetry& symmetry = symmetries[i];
+    EXPECT_GE(symmetry.score, kDefaultSymmetryScore) << "entry " << i;
+    const double turn = Eigen::AngleAxisd(symmetry.S.linear()).angle();
+    EXPECT_TRUE(turn > 5.0 * kDegree ||
+                symmetry.S.translation().norm() > 0.01 * model.bounds().diagonal())
+        << "entry " << i << " is the identity";
+    if (i > 0) {
+      EXPECT_LE(symmetry.score, symmetries[i - 1].score);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace freeform_inspection
