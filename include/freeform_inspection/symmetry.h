@@ -24,8 +24,10 @@ struct Symmetry {
   double score = 0.0;  ///< share of the model's cells that S maps onto the model surface
 };
 
-/// Self-match score a motion needs to count as a symmetry of the model.
-constexpr double kDefaultSymmetryScore = 0.6;
+/// Self-match score a motion needs to count as a symmetry of the model. A scan is a view: a
+/// motion that lays 40 % of the model onto itself can lay a whole view onto the model, so the
+/// twins the pipeline tries include such partial self-matches (docs/registration.md).
+constexpr double kDefaultSymmetryScore = 0.4;
 
 /// @brief Symmetries other than the identity whose self-match score is at least `min_score`,
 /// best first. Deterministic.
