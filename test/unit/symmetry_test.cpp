@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Copyright 2026 The freeform_inspection authors
 // Model symmetries (symmetry.h) on a shape whose symmetries are known: a box.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "test_shapes.h"
+#include <gtest/gtest.h>
+
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/symmetry.h"
-#include "test_shapes.h"
 
 namespace freeform_inspection {
 namespace {
