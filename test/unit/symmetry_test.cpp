@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Copyright 2026 The freeform_inspection authors
 // Model symmetries (symmetry.h) on a shape whose symmetries are known: a box.
+#include "freeform_inspection/symmetry.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,7 +11,6 @@
 #include <gtest/gtest.h>
 
 #include "freeform_inspection/model.h"
-#include "freeform_inspection/symmetry.h"
 
 namespace freeform_inspection {
 namespace {
