@@ -15,28 +15,51 @@
 namespace freeform_inspection {
 namespace {
 
+// The area-weighted centroid and principal axes of a surface graph; false when it has no area.
+bool principalFrame(const SurfaceGraph& graph,
+                    Eigen::Vector3d* centroid,
+                    Eigen::Matrix3d* axes,
+                    Eigen::Vector3d* spread) {
+  double area = 0.0;
+  *centroid = Eigen::Vector3d::Zero();
+  for (std::size_t c = 0; c < graph.size(); ++c) {
+    *centroid += graph.area[c] * graph.centroids[c];
+    area += graph.area[c];
+  }
+  if (!(area > 0.0)) {
+    return false;
+  }
+  *centroid /= area;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (std::size_t c = 0; c < graph.size(); ++c) {
+    const Eigen::Vector3d d = graph.centroids[c] - *centroid;
+    covariance += graph.area[c] * d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  *axes = solver.eigenvectors();
+  *spread = solver.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  return true;
+}
+
+// The motion turning by `rotation` about `centroid`.
+Eigen::Isometry3d turnAbout(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& centroid) {
+  Eigen::Isometry3d S = Eigen::Isometry3d::Identity();
+  S.linear() = rotation;
+  S.translation() = centroid - rotation * centroid;
+  return S;
+}
+
 // Rotations about the principal axes of the model's surface (through its centroid) by multiples
 // of 30°: the motions near-symmetric parts (flanges, tubes, blades) are confused by. Each is
 // only a starting point; ICP takes it to the nearest true self-match, if any.
 std::vector<Eigen::Isometry3d> principalAxisRotations(const SurfaceGraph& graph) {
-  double area = 0.0;
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (std::size_t c = 0; c < graph.size(); ++c) {
-    centroid += graph.area[c] * graph.centroids[c];
-    area += graph.area[c];
-  }
   std::vector<Eigen::Isometry3d> motions;
-  if (!(area > 0.0)) {
+  Eigen::Vector3d centroid;
+  Eigen::Matrix3d axes;
+  Eigen::Vector3d spread;
+  if (!principalFrame(graph, &centroid, &axes, &spread)) {
     return motions;
   }
-  centroid /= area;
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (std::size_t c = 0; c < graph.size(); ++c) {
-    const Eigen::Vector3d d = graph.centroids[c] - centroid;
-    covariance += graph.area[c] * d * d.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-  const Eigen::Vector3d spread = solver.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   for (int axis = 0; axis < 3; ++axis) {
     // Turns by 30° only about an axis the part is nearly round about (the other two spreads
     // within 25 %); about any other axis only the half turn can map the part onto itself.
@@ -44,12 +67,8 @@ std::vector<Eigen::Isometry3d> principalAxisRotations(const SurfaceGraph& graph)
     const double b = spread[(axis + 2) % 3];
     const bool round = std::abs(a - b) <= 0.25 * std::max(a, b);
     for (int step = round ? 1 : 6; step < (round ? 12 : 7); ++step) {
-      const Eigen::AngleAxisd rotation(step * 3.14159265358979323846 / 6.0,
-                                       solver.eigenvectors().col(axis));
-      Eigen::Isometry3d S = Eigen::Isometry3d::Identity();
-      S.linear() = rotation.toRotationMatrix();
-      S.translation() = centroid - S.linear() * centroid;
-      motions.push_back(S);
+      const Eigen::AngleAxisd rotation(step * 3.14159265358979323846 / 6.0, axes.col(axis));
+      motions.push_back(turnAbout(rotation.toRotationMatrix(), centroid));
     }
   }
   return motions;
@@ -124,6 +143,31 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
     return a.score > b.score;
   });
   return symmetries;
+}
+
+std::vector<Eigen::Isometry3d> principalFrameTurns(const SurfaceGraph& graph) {
+  std::vector<Eigen::Isometry3d> turns;
+  Eigen::Vector3d centroid;
+  Eigen::Matrix3d axes;
+  Eigen::Vector3d spread;
+  if (!principalFrame(graph, &centroid, &axes, &spread)) {
+    return turns;
+  }
+  // Signed permutations of the principal axes with determinant +1: the rotation group of a cube
+  // set along them (24, the identity left out).
+  const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (const auto& order : orders) {
+    for (int signs = 0; signs < 8; ++signs) {
+      Eigen::Matrix3d Q = Eigen::Matrix3d::Zero();
+      for (int row = 0; row < 3; ++row) {
+        Q(row, order[row]) = ((signs >> row) & 1) != 0 ? -1.0 : 1.0;
+      }
+      if (Q.determinant() > 0.0 && !Q.isIdentity()) {
+        turns.push_back(turnAbout(axes * Q * axes.transpose(), centroid));
+      }
+    }
+  }
+  return turns;
 }
 
 }  // namespace freeform_inspection

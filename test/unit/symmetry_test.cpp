@@ -75,5 +75,33 @@ TEST(Symmetry, ModelKeepsPartialSelfMatchesBestFirst) {
   }
 }
 
+TEST(Symmetry, PrincipalFrameTurnsAreTheCubeGroupAboutTheCentroid) {
+  // The box's principal axes are its own (sides 100, 60 and 40 mm all differ) and its centroid
+  // the origin: the 23 turns are the cube's rotations but the identity, each keeps the origin,
+  // no two agree, and exactly the three half turns about the axes lay the box on itself.
+  const TriangleMesh box = test::makeBox(kHalfExtent);
+  const Model model(box, "box", "test");
+  const std::vector<Eigen::Isometry3d> turns = principalFrameTurns(model.descriptors().graph);
+  ASSERT_EQ(turns.size(), 23u);
+  const double diagonal = model.bounds().diagonal();
+  int onto_itself = 0;
+  for (std::size_t i = 0; i < turns.size(); ++i) {
+    const Eigen::Matrix3d R = turns[i].linear();
+    EXPECT_LT((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 1e-9);
+    EXPECT_NEAR(R.determinant(), 1.0, 1e-9);
+    EXPECT_LT(turns[i].translation().norm(), 0.01 * diagonal) << "turn " << i;
+    const double angle = Eigen::AngleAxisd(R).angle() / kDegree;
+    const bool quarter_half_or_third = std::abs(angle - 90.0) < 1.0 ||
+                                       std::abs(angle - 180.0) < 1.0 ||
+                                       std::abs(angle - 120.0) < 1.0;
+    EXPECT_TRUE(quarter_half_or_third) << "turn " << i << " by " << angle << "°";
+    for (std::size_t j = 0; j < i; ++j) {
+      EXPECT_GT((turns[j].linear() - R).norm(), 0.5) << "turns " << j << " and " << i;
+    }
+    onto_itself += cornerMismatch(box, turns[i]) < 0.005 * diagonal ? 1 : 0;
+  }
+  EXPECT_EQ(onto_itself, 3);
+}
+
 }  // namespace
 }  // namespace freeform_inspection
