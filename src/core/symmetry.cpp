@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Eigenvalues>
 
@@ -15,30 +16,34 @@
 namespace freeform_inspection {
 namespace {
 
-// The area-weighted centroid and principal axes of a surface graph; false when it has no area.
-bool principalFrame(const SurfaceGraph& graph,
-                    Eigen::Vector3d* centroid,
-                    Eigen::Matrix3d* axes,
-                    Eigen::Vector3d* spread) {
+// The area-weighted centroid of a surface graph, its principal axes (columns) and the spread
+// along each [m].
+struct PrincipalFrame {
+  Eigen::Vector3d centroid;
+  Eigen::Matrix3d axes;
+  Eigen::Vector3d spread;
+};
+
+// Empty for a graph without area.
+std::optional<PrincipalFrame> principalFrame(const SurfaceGraph& graph) {
   double area = 0.0;
-  *centroid = Eigen::Vector3d::Zero();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (std::size_t c = 0; c < graph.size(); ++c) {
-    *centroid += graph.area[c] * graph.centroids[c];
+    centroid += graph.area[c] * graph.centroids[c];
     area += graph.area[c];
   }
   if (!(area > 0.0)) {
-    return false;
+    return std::nullopt;
   }
-  *centroid /= area;
+  centroid /= area;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   for (std::size_t c = 0; c < graph.size(); ++c) {
-    const Eigen::Vector3d d = graph.centroids[c] - *centroid;
+    const Eigen::Vector3d d = graph.centroids[c] - centroid;
     covariance += graph.area[c] * d * d.transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-  *axes = solver.eigenvectors();
-  *spread = solver.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  return true;
+  return PrincipalFrame{
+      centroid, solver.eigenvectors(), solver.eigenvalues().cwiseMax(0.0).cwiseSqrt()};
 }
 
 // The motion turning by `rotation` about `centroid`.
@@ -54,21 +59,19 @@ Eigen::Isometry3d turnAbout(const Eigen::Matrix3d& rotation, const Eigen::Vector
 // only a starting point; ICP takes it to the nearest true self-match, if any.
 std::vector<Eigen::Isometry3d> principalAxisRotations(const SurfaceGraph& graph) {
   std::vector<Eigen::Isometry3d> motions;
-  Eigen::Vector3d centroid;
-  Eigen::Matrix3d axes;
-  Eigen::Vector3d spread;
-  if (!principalFrame(graph, &centroid, &axes, &spread)) {
+  const std::optional<PrincipalFrame> frame = principalFrame(graph);
+  if (!frame) {
     return motions;
   }
   for (int axis = 0; axis < 3; ++axis) {
     // Turns by 30° only about an axis the part is nearly round about (the other two spreads
     // within 25 %); about any other axis only the half turn can map the part onto itself.
-    const double a = spread[(axis + 1) % 3];
-    const double b = spread[(axis + 2) % 3];
+    const double a = frame->spread[(axis + 1) % 3];
+    const double b = frame->spread[(axis + 2) % 3];
     const bool round = std::abs(a - b) <= 0.25 * std::max(a, b);
     for (int step = round ? 1 : 6; step < (round ? 12 : 7); ++step) {
-      const Eigen::AngleAxisd rotation(step * 3.14159265358979323846 / 6.0, axes.col(axis));
-      motions.push_back(turnAbout(rotation.toRotationMatrix(), centroid));
+      const Eigen::AngleAxisd rotation(step * 3.14159265358979323846 / 6.0, frame->axes.col(axis));
+      motions.push_back(turnAbout(rotation.toRotationMatrix(), frame->centroid));
     }
   }
   return motions;
@@ -147,10 +150,8 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
 
 std::vector<Eigen::Isometry3d> principalFrameTurns(const SurfaceGraph& graph) {
   std::vector<Eigen::Isometry3d> turns;
-  Eigen::Vector3d centroid;
-  Eigen::Matrix3d axes;
-  Eigen::Vector3d spread;
-  if (!principalFrame(graph, &centroid, &axes, &spread)) {
+  const std::optional<PrincipalFrame> frame = principalFrame(graph);
+  if (!frame) {
     return turns;
   }
   // Signed permutations of the principal axes with determinant +1: the rotation group of a cube
@@ -163,7 +164,7 @@ std::vector<Eigen::Isometry3d> principalFrameTurns(const SurfaceGraph& graph) {
         Q(row, order[row]) = ((signs >> row) & 1) != 0 ? -1.0 : 1.0;
       }
       if (Q.determinant() > 0.0 && !Q.isIdentity()) {
-        turns.push_back(turnAbout(axes * Q * axes.transpose(), centroid));
+        turns.push_back(turnAbout(frame->axes * Q * frame->axes.transpose(), frame->centroid));
       }
     }
   }
