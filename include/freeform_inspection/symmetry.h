@@ -39,9 +39,9 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
                                      double diagonal,
                                      double min_score = kDefaultSymmetryScore);
 
-/// @brief The 23 quarter and half turns that map a cube set along the principal axes of `graph`
-/// (area-weighted, through its centroid) onto itself, the identity left out. Where a pose leaves
-/// much of a view off the CAD, these are the confusions of a blocky part that its symmetries
+/// @brief The 23 turns (quarter, half and third) that map a cube set along the principal axes of
+/// `graph` (area-weighted, through its centroid) onto itself, the identity left out. Where a pose
+/// leaves much of a view off the CAD, these are the confusions of a blocky part that its symmetries
 /// need not cover (a bar's section turned about its diagonal). Empty for a graph without area.
 std::vector<Eigen::Isometry3d> principalFrameTurns(const SurfaceGraph& graph);
 

@@ -327,8 +327,8 @@ void registerScan(const Model& model,
   };
   // A pose that leaves much of the scan's surface off the CAD may be a confusion that neither the
   // triplets nor the twins reached (a bar's view turned about a diagonal of its section). The
-  // quarter and half turns about the CAD's principal axes are tried from it; the best one that
-  // the scan clearly sides with (scanPrefers) replaces it.
+  // cube's turns about the CAD's principal axes are tried from it; the best one that the scan
+  // clearly sides with (scanPrefers) replaces it.
   if (icp.usable() && surfaceOnCad(scan.graph,
                                    scan_points,
                                    model.query(),
