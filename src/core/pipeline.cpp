@@ -325,16 +325,22 @@ void registerScan(const Model& model,
     return verificationTerms(
         pose, set, model.query(), evidence, config.registration.normal_tolerance_deg);
   };
+  // The share of the scan's surface the fit puts on the CAD, once per fit: it decides the retry
+  // below and is reported as surface_on_cad.
+  const auto surfaceShare = [&](const IcpResult& fit) {
+    return surfaceOnCad(scan.graph,
+                        scan_points,
+                        model.query(),
+                        fit.T_cad_scan,
+                        fit.inlier_distance,
+                        config.registration.verification_points);
+  };
+  double surface_share = icp.usable() ? surfaceShare(icp) : 0.0;
   // A pose that leaves much of the scan's surface off the CAD may be a confusion that neither the
   // triplets nor the twins reached (a bar's view turned about a diagonal of its section). The
   // cube's turns about the CAD's principal axes are tried from it; the best one that the scan
   // clearly sides with (scanPrefers) replaces it.
-  if (icp.usable() && surfaceOnCad(scan.graph,
-                                   scan_points,
-                                   model.query(),
-                                   icp.T_cad_scan,
-                                   icp.inlier_distance,
-                                   config.registration.verification_points) < kRetryBelowSurface) {
+  if (icp.usable() && surface_share < kRetryBelowSurface) {
     std::vector<Eigen::Isometry3d> starts;
     for (const Eigen::Isometry3d& turn : principalFrameTurns(cad.graph)) {
       starts.push_back(turn * icp.T_cad_scan);
@@ -357,6 +363,7 @@ void registerScan(const Model& model,
       const IcpResult moved = refine(chosen->T_cad_scan);
       if (moved.usable()) {
         icp = moved;
+        surface_share = surfaceShare(icp);
         contenders.push_back(*chosen);
         fine_scores.push_back(chosen_score);
         best = contenders.size() - 1;
@@ -404,12 +411,7 @@ void registerScan(const Model& model,
   }
   result->counts.correspondences = explained;
 
-  result->surface_on_cad = surfaceOnCad(scan.graph,
-                                        scan_points,
-                                        model.query(),
-                                        icp.T_cad_scan,
-                                        icp.inlier_distance,
-                                        config.registration.verification_points);
+  result->surface_on_cad = surface_share;
   const double noise_floor = std::max(result->scan_noise, 1e-3 * diagonal);
   const bool stretched = icp.sigma > config.registration.max_residual_ratio * noise_floor &&
                          icp.fitness < config.registration.residual_fitness;
