@@ -69,6 +69,13 @@ class MeshQuery {
   std::vector<ClosestPoint> closest(
       const Points& queries, double max_distance = std::numeric_limits<double>::infinity()) const;
 
+  /// @brief closest() for many points, each search starting from a face likely to be near
+  /// (`hints[i]`, −1 for none; e.g. the face of the previous ICP iteration): its distance bounds
+  /// the search from the start. The same results as without hints, found faster.
+  std::vector<ClosestPoint> closest(const Points& queries,
+                                    double max_distance,
+                                    const std::vector<int>& hints) const;
+
   /// @brief First hit of the ray origin + t·direction for t in (t_min, t_max].
   /// @param direction need not be unit; t is measured in metres along its unit vector.
   RayHit castRay(const Eigen::Vector3d& origin,

@@ -49,6 +49,7 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"icp/point_to_plane", &config.icp.point_to_plane},
       {"icp/max_iterations", &config.icp.max_iterations},
       {"icp/convergence", &config.icp.convergence},
+      {"icp/still_fraction", &config.icp.still_fraction},
       {"icp/sigma_multiple", &config.icp.sigma_multiple},
       {"icp/min_cutoff_ratio", &config.icp.min_cutoff_ratio},
       {"icp/max_cutoff_ratio", &config.icp.max_cutoff_ratio},

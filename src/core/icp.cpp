@@ -31,18 +31,23 @@ struct Pairs {
   std::vector<double> residual;         // signed (plane) or unsigned (point) distance
 };
 
+// `faces`: each point's face of the previous iteration (−1: none), where its search starts;
+// updated to this iteration's.
 Pairs match(const MeshQuery& cad,
             const Points& points,
             const Eigen::Isometry3d& T,
             double cutoff,
-            bool point_to_plane) {
+            bool point_to_plane,
+            std::vector<int>* faces) {
   Points moved(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     moved[i] = T * points[i];
   }
-  const std::vector<ClosestPoint> closest = cad.closest(moved, cutoff);
+  faces->resize(points.size(), -1);
+  const std::vector<ClosestPoint> closest = cad.closest(moved, cutoff, *faces);
   Pairs pairs;
   for (std::size_t i = 0; i < moved.size(); ++i) {
+    (*faces)[i] = closest[i].face;
     if (!closest[i].found) {
       continue;
     }
@@ -98,6 +103,9 @@ std::vector<std::string> validate(const IcpConfig& config) {
   if (!(config.convergence > 0.0 && config.convergence < 1.0)) {
     errors.push_back("icp.convergence must be in (0, 1)");
   }
+  if (!(config.still_fraction >= 0.0 && config.still_fraction < 1.0)) {
+    errors.push_back("icp.still_fraction must be in [0, 1)");
+  }
   if (!(config.sigma_multiple > 0.0 && std::isfinite(config.sigma_multiple))) {
     errors.push_back("icp.sigma_multiple must be a finite value > 0");
   }
@@ -111,19 +119,22 @@ std::vector<std::string> validate(const IcpConfig& config) {
   return errors;
 }
 
-IcpResult measureFit(const MeshQuery& cad,
-                     const Points& scan_points,
-                     const Eigen::Isometry3d& pose,
-                     double cad_diagonal,
-                     const IcpConfig& config) {
+namespace {
+
+// measureFit() on points already thinned to max_points, the search starting from `faces`.
+IcpResult fitOf(const MeshQuery& cad,
+                const Points& points,
+                const Eigen::Isometry3d& pose,
+                double cad_diagonal,
+                const IcpConfig& config,
+                std::vector<int>* faces) {
   IcpResult result;
   result.T_cad_scan = pose;
   result.converged = true;
-  const Points points = evenSubset(scan_points, config.max_points);
   const double floor = config.min_cutoff_ratio * cad_diagonal;
   const double ceiling = config.max_cutoff_ratio * cad_diagonal;
   // Inliers within 3σ (bounded), their RMS.
-  const Pairs pairs = match(cad, points, pose, ceiling, config.point_to_plane);
+  const Pairs pairs = match(cad, points, pose, ceiling, config.point_to_plane, faces);
   std::vector<double> magnitude(pairs.residual.size());
   std::transform(pairs.residual.begin(), pairs.residual.end(), magnitude.begin(), [](double r) {
     return std::abs(r);
@@ -144,6 +155,17 @@ IcpResult measureFit(const MeshQuery& cad,
   return result;
 }
 
+}  // namespace
+
+IcpResult measureFit(const MeshQuery& cad,
+                     const Points& scan_points,
+                     const Eigen::Isometry3d& pose,
+                     double cad_diagonal,
+                     const IcpConfig& config) {
+  std::vector<int> faces;
+  return fitOf(cad, evenSubset(scan_points, config.max_points), pose, cad_diagonal, config, &faces);
+}
+
 IcpResult refinePose(const MeshQuery& cad,
                      const Points& scan_points,
                      const Eigen::Isometry3d& initial,
@@ -157,8 +179,19 @@ IcpResult refinePose(const MeshQuery& cad,
   const double ceiling = config.max_cutoff_ratio * cad_diagonal;
   double cutoff = std::clamp(initial_cutoff, floor, ceiling);
   double previous_mse = -1.0;
+  // The points' centroid and reach, to bound how far a step moves any of them.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) {
+    centroid += p / static_cast<double>(points.size());
+  }
+  double reach = 0.0;
+  for (const Eigen::Vector3d& p : points) {
+    reach = std::max(reach, (p - centroid).norm());
+  }
+  std::vector<int> faces;  // each point's closest face, where the next search starts
   for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
-    const Pairs pairs = match(cad, points, result.T_cad_scan, cutoff, config.point_to_plane);
+    const Pairs pairs =
+        match(cad, points, result.T_cad_scan, cutoff, config.point_to_plane, &faces);
     if (pairs.source.size() < 6) {
       result.status =
           Status::failure(StatusCode::kRegistrationFailed,
@@ -172,6 +205,10 @@ IcpResult refinePose(const MeshQuery& cad,
     }
     const Eigen::Isometry3d step =
         config.point_to_plane ? pointToPlaneStep(pairs) : pointToPointStep(pairs);
+    // No point moves farther than the step moves the centroid plus its turn times the reach.
+    const Eigen::Vector3d moved_centroid = result.T_cad_scan * centroid;
+    const double largest_move = Eigen::AngleAxisd(step.linear()).angle() * reach +
+                                (step * moved_centroid - moved_centroid).norm();
     result.T_cad_scan = step * result.T_cad_scan;
     result.iterations = iteration + 1;
     // The cut-off follows the residual: 3 robust σ of the pairs, never growing.
@@ -181,19 +218,24 @@ IcpResult refinePose(const MeshQuery& cad,
     });
     result.sigma = 1.4826 * internal::median(magnitude);
     cutoff = std::clamp(std::min(cutoff, config.sigma_multiple * result.sigma), floor, ceiling);
-    // eq. 15 (relative change of the mean squared error), or a step too small to matter: on
-    // noise-free data the error keeps halving long after the pose has stopped moving.
+    // eq. 15 (relative change of the mean squared error), or a step too small to matter. On
+    // noise-free data the error keeps halving long after the pose has stopped moving. On a noisy
+    // scan the pairs trade faces between iterations and the error jitters by 1e-4 of itself for
+    // ever, never meeting eq. 15: the pose has settled when the error rose while the step moved
+    // no point by a hundredth of the noise. (A small step alone is not enough: far from the pose
+    // the residual is wide, and steady small steps still lead somewhere.)
     const bool settled =
         previous_mse >= 0.0 && std::abs(previous_mse - mse) < config.convergence * previous_mse;
-    const bool still = Eigen::AngleAxisd(step.linear()).angle() < 1e-7 &&
-                       step.translation().norm() < 1e-8 * cad_diagonal;
+    const bool jitter = previous_mse >= 0.0 && mse >= previous_mse &&
+                        largest_move < config.still_fraction * result.sigma;
+    const bool still = jitter || largest_move < 1e-8 * cad_diagonal;
     if (settled || still) {
       result.converged = true;
       break;
     }
     previous_mse = mse;
   }
-  const IcpResult fit = measureFit(cad, points, result.T_cad_scan, cad_diagonal, config);
+  const IcpResult fit = fitOf(cad, points, result.T_cad_scan, cad_diagonal, config, &faces);
   result.sigma = fit.sigma;
   result.inlier_distance = fit.inlier_distance;
   result.rmse = fit.rmse;

@@ -463,7 +463,12 @@ const TriangleMesh& MeshQuery::mesh() const {
 namespace {
 
 // The search behind closest() and closestFacing(): `state` holds the distance bound and filter.
-ClosestPoint closestOnMesh(const Data& data, const Eigen::Vector3d& query, PointQueryState& state) {
+// A `hint` face within reach is offered first and its distance bounds the search: the answer
+// is the same, the least (distance, face) over every face the search radius admits.
+ClosestPoint closestOnMesh(const Data& data,
+                           const Eigen::Vector3d& query,
+                           PointQueryState& state,
+                           int hint = -1) {
   ClosestPoint result;
   if (!data.valid() || !query.allFinite() || std::isnan(state.max_distance) ||
       state.max_distance < 0.0) {
@@ -472,7 +477,11 @@ ClosestPoint closestOnMesh(const Data& data, const Eigen::Vector3d& query, Point
   state.impl = &data;
   state.query = query;
   state.local_query = query - data.centre;
-  const double max_distance = state.max_distance;
+  double max_distance = state.max_distance;
+  if (hint >= 0 && static_cast<std::size_t>(hint) < data.mesh.faces.size() &&
+      considerFace(state, hint)) {
+    max_distance = std::min(max_distance, std::sqrt(state.best.squared_distance));
+  }
   if (representable(state.local_query)) {
     RTCPointQuery point_query;
     point_query.x = static_cast<float>(state.local_query.x());
@@ -538,6 +547,21 @@ std::vector<ClosestPoint> MeshQuery::closest(const Points& queries, double max_d
   for (long long i = 0; i < count; ++i) {
     results[static_cast<std::size_t>(i)] =
         closest(queries[static_cast<std::size_t>(i)], max_distance);
+  }
+  return results;
+}
+
+std::vector<ClosestPoint> MeshQuery::closest(const Points& queries,
+                                             double max_distance,
+                                             const std::vector<int>& hints) const {
+  std::vector<ClosestPoint> results(queries.size());
+  const auto count = static_cast<long long>(queries.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (long long i = 0; i < count; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    PointQueryState state;
+    state.max_distance = max_distance;
+    results[u] = closestOnMesh(*impl_, queries[u], state, u < hints.size() ? hints[u] : -1);
   }
   return results;
 }

@@ -4,6 +4,7 @@
 #include "freeform_inspection/icp.h"
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -110,6 +111,49 @@ TEST(Icp, NoiseDoesNotBiasThePoseAndIsMeasured) {
   EXPECT_NEAR(result.rmse, 0.986 * sigma, 0.03 * sigma);
 }
 
+// On a noisy scan the pairs trade faces between iterations and the mean squared error jitters
+// by about 1e-4 of itself, so eq. 15 alone (1e-5) runs on. The steps then move no point by a
+// hundredth of the noise, and stopping there leaves the pose within a hundredth of a degree and
+// of the noise of where eq. 15 stops (the pose's own statistical error, σ/√n, is 0.007 σ).
+TEST(Icp, NoisyScanStopsOnceNoStepMovesAPointByAHundredthOfTheNoise) {
+  // A cast link of 5,097 triangles: flat faces meeting at edges, where noisy points change face.
+  const TriangleMesh mesh =
+      loadMesh(std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/kuka_kr10r900_2_link_4.stl", 1.0)
+          .mesh;
+  const MeshQuery cad(mesh);
+  const double diagonal = diagonalOf(mesh);
+  const double sigma = 0.005 * diagonal;
+  IcpConfig eq15_only;
+  eq15_only.still_fraction = 0.0;
+  // From 3° the pose is reached in a few steps; from 15° the residual is wide at first and the
+  // steps small against it while they still lead somewhere: the rule must not stop there.
+  for (const double start_deg : {3.0, 15.0}) {
+    const Eigen::Isometry3d T_scan_cad =
+        perturbation(start_deg, Eigen::Vector3d(2, -1, 1), Eigen::Vector3d(0.001, 0.002, -0.001));
+    const Points scan = moved(sampleSurface(mesh, 20000, kSeed, sigma).points, T_scan_cad);
+    const IcpResult stopped =
+        refinePose(cad, scan, Eigen::Isometry3d::Identity(), 0.05, diagonal, IcpConfig());
+    const IcpResult full =
+        refinePose(cad, scan, Eigen::Isometry3d::Identity(), 0.05, diagonal, eq15_only);
+    ASSERT_TRUE(stopped.status.ok()) << stopped.status.message;
+    ASSERT_TRUE(full.usable()) << full.status.message;
+    std::printf(
+        "from %.0f°: %d iterations with the step rule, %d with eq. 15 alone, %.4f° and "
+        "%.4f σ apart\n",
+        start_deg,
+        stopped.iterations,
+        full.iterations,
+        angleDeg(stopped.T_cad_scan, full.T_cad_scan),
+        (stopped.T_cad_scan.translation() - full.T_cad_scan.translation()).norm() / sigma);
+    EXPECT_LT(stopped.iterations, full.iterations) << start_deg;
+    EXPECT_LT(angleDeg(stopped.T_cad_scan, full.T_cad_scan), 0.01) << start_deg;
+    EXPECT_LT((stopped.T_cad_scan.translation() - full.T_cad_scan.translation()).norm(),
+              0.01 * sigma)
+        << start_deg;
+    EXPECT_LT(angleDeg(stopped.T_cad_scan, T_scan_cad.inverse()), 0.1) << start_deg;
+  }
+}
+
 // measureFit is refinePose's own final fit, at a pose it does not move: the same numbers at
 // the refined pose, and a worse fit at a pose shifted away from it.
 TEST(Icp, MeasureFitIsTheFitAtAGivenPose) {
@@ -182,10 +226,12 @@ TEST(IcpConfig, ValidationNamesTheField) {
   EXPECT_TRUE(validate(config).empty());
   config.max_iterations = 0;
   config.min_cutoff_ratio = 1.0;
+  config.still_fraction = -0.1;
   const auto errors = validate(config);
-  ASSERT_EQ(errors.size(), 2u);
+  ASSERT_EQ(errors.size(), 3u);
   EXPECT_NE(errors[0].find("icp.max_iterations"), std::string::npos);
-  EXPECT_NE(errors[1].find("icp.min_cutoff_ratio"), std::string::npos);
+  EXPECT_NE(errors[1].find("icp.still_fraction"), std::string::npos);
+  EXPECT_NE(errors[2].find("icp.min_cutoff_ratio"), std::string::npos);
 }
 
 }  // namespace

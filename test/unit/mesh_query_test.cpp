@@ -337,6 +337,40 @@ TEST(MeshQuery, BatchEqualsSingleQueries) {
   EXPECT_TRUE(query.closest(Points{}).empty());
 }
 
+// A hint only bounds the search: any face, near or far, right or wrong, invalid or none, gives
+// the answer without hints to the last bit (ties included: a point on the torus's axis is at
+// the same distance from a whole ring of faces).
+TEST(MeshQuery, HintsChangeNoAnswer) {
+  const MeshQuery query(test::torus(1.0, 0.3, 32, 16));
+  ASSERT_TRUE(query.status().ok());
+  Points queries = randomPoints(3000, 1.6, kSeed);
+  queries.emplace_back(0.0, 0.0, 0.0);
+  queries.emplace_back(0.0, 0.0, 0.5);
+  const auto faces = static_cast<int>(query.mesh().faces.size());
+  std::mt19937 rng(kSeed + 1);
+  std::uniform_int_distribution<int> face(-1, faces);  // −1 and `faces` are no face
+  for (const double max_distance : {kInf, 0.2}) {
+    const std::vector<ClosestPoint> plain = query.closest(queries, max_distance);
+    std::vector<int> random_hints;
+    std::vector<int> right_hints;
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      random_hints.push_back(face(rng));
+      right_hints.push_back(plain[i].face);
+    }
+    for (const std::vector<int>& hints : {random_hints, right_hints, std::vector<int>{}}) {
+      const std::vector<ClosestPoint> hinted = query.closest(queries, max_distance, hints);
+      ASSERT_EQ(hinted.size(), queries.size());
+      for (std::size_t i = 0; i < queries.size(); ++i) {
+        ASSERT_EQ(hinted[i].found, plain[i].found) << i;
+        EXPECT_EQ(hinted[i].face, plain[i].face) << i;
+        EXPECT_EQ(hinted[i].point, plain[i].point) << i;
+        EXPECT_EQ(hinted[i].distance, plain[i].distance) << i;
+        EXPECT_EQ(hinted[i].signed_distance, plain[i].signed_distance) << i;
+      }
+    }
+  }
+}
+
 TEST(MeshQuery, ClosestMatchesBruteForceAndWindingNumber) {
   // 576 faces, irregular (noisy) and not convex.
   const TriangleMesh mesh = test::addNormalNoise(test::torus(1.0, 0.35, 24, 12), 0.02, kSeed);
