@@ -7,6 +7,8 @@
 #include <memory>
 #include <numeric>
 
+#include "cloud_neighbours_internal.h"
+
 #include "freeform_inspection/mesh.h"
 #include "freeform_inspection/point_index.h"
 
@@ -17,6 +19,8 @@ constexpr double kPi = 3.14159265358979323846;
 // Clouds: each out-of-tolerance point joins its nearest neighbours of the same sign. Ten keep a
 // random sampling well connected (a random graph falls apart below ~4.5 neighbours per point).
 constexpr int kJoinNeighbours = 10;
+// The whole cloud's neighbour table replaces per-point queries from 1/8 of it out of tolerance.
+constexpr std::size_t kTableShare = 8;
 
 // -1 missing material, +1 excess, 0 within tolerance or unmatched.
 int outsideSign(float deviation, const ToleranceConfig& tolerance) {
@@ -135,14 +139,35 @@ DefectResult findDefects(const Points& points_cad,
     // the order keeps the result independent of the thread count).
     std::vector<std::vector<int>> same_side(outside.size());
     const auto count = static_cast<long>(outside.size());
+    // When much of the scan is out of tolerance (a band far below the noise), one neighbour
+    // table of the whole cloud on a grid costs a tenth of a kd-tree query per point; its rows
+    // are the kd-tree's answers, so the regions are the same either way.
+    const bool finite = std::all_of(points_cad.begin(),
+                                    points_cad.end(),
+                                    [](const Eigen::Vector3d& p) { return p.allFinite(); });
+    const internal::NeighbourTable table =
+        finite && outside.size() * kTableShare >= points_cad.size()
+            ? internal::nearestNeighbourTable(points_cad, kJoinNeighbours + 1)
+            : internal::NeighbourTable();
 #pragma omp parallel for schedule(dynamic, 256)
     for (long k = 0; k < count; ++k) {
       const std::size_t i = outside[static_cast<std::size_t>(k)];
+      const auto join = [&](int j, double squared_distance) {
+        if (squared_distance <= reach * reach && sign[static_cast<std::size_t>(j)] == sign[i]) {
+          same_side[static_cast<std::size_t>(k)].push_back(j);
+        }
+      };
       // The nearest few within reach: a bounded cost however dense or noisy the cloud is.
-      for (const Neighbour& n : index->nearest(points_cad[i], kJoinNeighbours + 1)) {
-        if (n.squared_distance <= reach * reach &&
-            sign[static_cast<std::size_t>(n.index)] == sign[i]) {
-          same_side[static_cast<std::size_t>(k)].push_back(n.index);
+      if (table.k > 0) {
+        const int* row = table.of(i);
+        for (int c = 0; c < table.k; ++c) {
+          join(row[c],
+               internal::squaredDistance(points_cad[i],
+                                         points_cad[static_cast<std::size_t>(row[c])]));
+        }
+      } else {
+        for (const Neighbour& n : index->nearest(points_cad[i], kJoinNeighbours + 1)) {
+          join(n.index, n.squared_distance);
         }
       }
     }

@@ -137,6 +137,48 @@ TEST(Defects, NoiseAloneGivesNoRegionAtAFourSigmaBand) {
   }
 }
 
+// A band far below the noise puts most of a cloud out of tolerance; its neighbours then come
+// from one table of the whole cloud instead of a kd-tree query per point. The regions must be
+// the same: the same cloud with eight in-tolerance copies of itself 10 m away (the spacing,
+// each point's nearest neighbours and the areas unchanged) keeps fewer than an eighth of its
+// points out of tolerance, so its neighbours are queried point by point.
+TEST(Defects, NeighboursFromOneTableOrPerPointGiveTheSameRegions) {
+  const std::vector<SurfaceDefect> defects = {{Eigen::Vector3d(-0.02, 0.02, 0.0), 0.008, 6e-4}};
+  const PlaneScan scan = scanPlane(defects, 5e-5, 4);
+  const ToleranceConfig tolerance = band(3e-5);
+  const DefectResult dense = findDefects(scan.points, {}, scan.deviation, tolerance, {});
+  Points points = scan.points;
+  std::vector<float> deviation = scan.deviation;
+  for (int copy = 1; copy <= 8; ++copy) {
+    for (const Eigen::Vector3d& p : scan.points) {
+      points.push_back(p + Eigen::Vector3d(10.0 * copy, 0.0, 0.0));
+      deviation.push_back(0.0F);
+    }
+  }
+  const DefectResult sparse = findDefects(points, {}, deviation, tolerance, {});
+  std::size_t outside = 0;
+  for (const float d : scan.deviation) {
+    outside += std::abs(d) > 3e-5 ? 1 : 0;
+  }
+  std::printf("%zu of %zu points out of tolerance, %zu regions\n",
+              outside,
+              scan.points.size(),
+              dense.regions.size());
+  ASSERT_GT(outside * 8, scan.points.size());  // the table's case
+  ASSERT_GE(dense.regions.size(), 1u);
+  ASSERT_EQ(sparse.regions.size(), dense.regions.size());
+  for (std::size_t r = 0; r < dense.regions.size(); ++r) {
+    EXPECT_EQ(sparse.regions[r].points, dense.regions[r].points) << r;
+    EXPECT_EQ(sparse.regions[r].sign, dense.regions[r].sign) << r;
+    EXPECT_EQ(sparse.regions[r].peak, dense.regions[r].peak) << r;
+    EXPECT_EQ(sparse.regions[r].centroid, dense.regions[r].centroid) << r;
+    EXPECT_EQ(sparse.regions[r].area, dense.regions[r].area) << r;
+  }
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    ASSERT_EQ(sparse.point_region[i], dense.point_region[i]) << i;
+  }
+}
+
 TEST(Defects, SmallRegionsAndUnmatchedPointsAreNotDefects) {
   // A 1 mm-radius bump covers ~12 grid points: reported with min_points 5, not with 20.
   const SurfaceDefect bump{Eigen::Vector3d(0.0, 0.0, 0.0), 0.001, 5e-4};
