@@ -25,8 +25,10 @@ namespace freeform_inspection {
 struct IcpConfig {
   bool point_to_plane = true;  ///< false: the paper's point-to-point
   int max_iterations = 60;
-  double convergence = 1e-5;       ///< eq. 15: stop when |e_h − e_{h+1}| < this × e_h
-  double still_fraction = 0.01;    ///< or when a step moves no point by this × the robust σ
+  double convergence = 1e-5;  ///< eq. 15: stop when |e_h − e_{h+1}| < this × e_h
+  /// or when the error rose while the step moved no point by this × the residual's robust σ
+  /// (a noisy scan's error jitters once the pose has settled and never meets eq. 15)
+  double still_fraction = 0.01;
   double sigma_multiple = 3.0;     ///< cut-off = this × robust σ of the residuals
   double min_cutoff_ratio = 1e-5;  ///< cut-off never below this × L (numerical floor)
   double max_cutoff_ratio = 0.05;  ///< nor above this × L (the inlier ceiling for fitness)
