@@ -541,14 +541,7 @@ ClosestPoint MeshQuery::closestFacing(const Eigen::Vector3d& query,
 }
 
 std::vector<ClosestPoint> MeshQuery::closest(const Points& queries, double max_distance) const {
-  std::vector<ClosestPoint> results(queries.size());
-  const auto count = static_cast<long long>(queries.size());
-#pragma omp parallel for schedule(dynamic, 256)
-  for (long long i = 0; i < count; ++i) {
-    results[static_cast<std::size_t>(i)] =
-        closest(queries[static_cast<std::size_t>(i)], max_distance);
-  }
-  return results;
+  return closest(queries, max_distance, std::vector<int>());
 }
 
 std::vector<ClosestPoint> MeshQuery::closest(const Points& queries,
