@@ -30,6 +30,11 @@ class PointIndex {
   /// point itself when it is in the set.
   std::vector<Neighbour> nearest(const Eigen::Vector3d& query, int k) const;
 
+  /// The nearest point of every query, each exactly nearest(query, 1).front() (index -1 for a
+  /// non-finite query or an empty set). Parallel; the queries are answered in a space-filling
+  /// order, so consecutive searches walk the same branches of the tree.
+  std::vector<Neighbour> nearestEach(const Points& queries) const;
+
   /// All points within `radius` [m], nearest first.
   std::vector<Neighbour> within(const Eigen::Vector3d& query, double radius) const;
 

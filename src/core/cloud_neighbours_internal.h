@@ -13,6 +13,7 @@
 #include "large_buffer_internal.h"
 
 #include "freeform_inspection/curvature.h"
+#include "freeform_inspection/point_index.h"
 #include "freeform_inspection/surface_graph.h"
 #include "freeform_inspection/types.h"
 
@@ -30,8 +31,12 @@ struct NeighbourTable {
 };
 
 /// @brief The table for all points (which must be finite; an empty set gives k = 0).
-/// Parallel (OpenMP), each row written by one thread: the same for any thread count.
-NeighbourTable nearestNeighbourTable(const Points& points, int k);
+/// Parallel (OpenMP), each row written by one thread: the same for any thread count. `index`, a
+/// PointIndex over the same points that the caller needs anyway, answers the rows the grid
+/// cannot prove exact instead of a kd-tree built here (the same rows either way).
+NeighbourTable nearestNeighbourTable(const Points& points,
+                                     int k,
+                                     const PointIndex* index = nullptr);
 
 /// @brief Median distance from a point to its `column`-th nearest neighbour (1: the nearest
 /// other) over every 7th point: the cloud's spacing at that rank. 0 when the table has no

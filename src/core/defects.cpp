@@ -135,70 +135,71 @@ DefectResult findDefects(const Points& points_cad,
     index = std::make_unique<PointIndex>(points_cad);
     spacing = medianSpacing(points_cad, *index);
     const double reach = config.neighbour_spacings * spacing;
-    // Neighbours found in parallel, joined in order afterwards (the sets are not thread-safe;
-    // the order keeps the result independent of the thread count).
-    std::vector<std::vector<int>> same_side(outside.size());
-    const auto count = static_cast<long>(outside.size());
-    // When much of the scan is out of tolerance (a band far below the noise), one neighbour
-    // table of the whole cloud on a grid costs a tenth of a kd-tree query per point; its rows
-    // are the kd-tree's answers, so the regions are the same either way.
+    const auto sameSide = [&](std::size_t i, int j, double squared_distance) {
+      return squared_distance <= reach * reach && sign[static_cast<std::size_t>(j)] == sign[i];
+    };
+    // The nearest few within reach: a bounded cost however dense or noisy the cloud is. When
+    // much of the scan is out of tolerance (a band far below the noise), one neighbour table of
+    // the whole cloud on a grid costs a tenth of a kd-tree query per point; its rows are the
+    // kd-tree's answers, so the regions are the same either way.
     const bool finite = std::all_of(points_cad.begin(),
                                     points_cad.end(),
                                     [](const Eigen::Vector3d& p) { return p.allFinite(); });
-    const internal::NeighbourTable table =
-        finite && outside.size() * kTableShare >= points_cad.size()
-            ? internal::nearestNeighbourTable(points_cad, kJoinNeighbours + 1)
-            : internal::NeighbourTable();
-#pragma omp parallel for schedule(dynamic, 256)
-    for (long k = 0; k < count; ++k) {
-      const std::size_t i = outside[static_cast<std::size_t>(k)];
-      const auto join = [&](int j, double squared_distance) {
-        if (squared_distance <= reach * reach && sign[static_cast<std::size_t>(j)] == sign[i]) {
-          same_side[static_cast<std::size_t>(k)].push_back(j);
-        }
-      };
-      // The nearest few within reach: a bounded cost however dense or noisy the cloud is.
-      if (table.k > 0) {
-        const int* row = table.of(i);
-        for (int c = 0; c < table.k; ++c) {
-          join(row[c],
-               internal::squaredDistance(points_cad[i],
-                                         points_cad[static_cast<std::size_t>(row[c])]));
-        }
-      } else {
-        for (const Neighbour& n : index->nearest(points_cad[i], kJoinNeighbours + 1)) {
-          join(n.index, n.squared_distance);
+    if (finite && outside.size() * kTableShare >= points_cad.size()) {
+      const internal::NeighbourTable table =
+          internal::nearestNeighbourTable(points_cad, kJoinNeighbours + 1, index.get());
+      for (const std::size_t i : outside) {
+        for (const int* j = table.of(i); j != table.of(i) + table.k; ++j) {
+          const auto other = static_cast<std::size_t>(*j);
+          if (sameSide(i, *j, internal::squaredDistance(points_cad[i], points_cad[other]))) {
+            sets.join(i, other);
+          }
         }
       }
-    }
-    for (std::size_t k = 0; k < outside.size(); ++k) {
-      for (const int j : same_side[k]) {
-        sets.join(outside[k], static_cast<std::size_t>(j));
+    } else {
+      // Queries in parallel, joined in order afterwards (the sets are not thread-safe).
+      std::vector<std::vector<int>> same_side(outside.size());
+      const auto count = static_cast<long>(outside.size());
+#pragma omp parallel for schedule(dynamic, 256)
+      for (long k = 0; k < count; ++k) {
+        const std::size_t i = outside[static_cast<std::size_t>(k)];
+        for (const Neighbour& n : index->nearest(points_cad[i], kJoinNeighbours + 1)) {
+          if (sameSide(i, n.index, n.squared_distance)) {
+            same_side[static_cast<std::size_t>(k)].push_back(n.index);
+          }
+        }
+      }
+      for (std::size_t k = 0; k < outside.size(); ++k) {
+        for (const int j : same_side[k]) {
+          sets.join(outside[k], static_cast<std::size_t>(j));
+        }
       }
     }
   }
+  // Each point's region root, found once: the loops below visit every member several times.
+  std::vector<std::size_t> root(points_cad.size(), 0);
   std::vector<std::size_t> members(points_cad.size(), 0);
   for (const std::size_t i : outside) {
-    ++members[sets.find(i)];
+    root[i] = sets.find(i);
+    ++members[root[i]];
   }
   std::vector<std::size_t> kept;
   for (const std::size_t i : outside) {
-    if (members[sets.find(i)] >= static_cast<std::size_t>(config.min_points)) {
+    if (members[root[i]] >= static_cast<std::size_t>(config.min_points)) {
       kept.push_back(i);
     }
   }
   std::vector<int> region_of_root(points_cad.size(), -1);
   std::vector<DefectRegion> regions;
   for (const std::size_t i : kept) {
-    const std::size_t root = sets.find(i);
-    if (region_of_root[root] < 0) {
-      region_of_root[root] = static_cast<int>(regions.size());
+    if (region_of_root[root[i]] < 0) {
+      region_of_root[root[i]] = static_cast<int>(regions.size());
       DefectRegion region;
       region.sign = sign[i];
       region.bbox_min = region.bbox_max = points_cad[i];
       regions.push_back(region);
     }
-    DefectRegion& region = regions[static_cast<std::size_t>(region_of_root[root])];
+    DefectRegion& region = regions[static_cast<std::size_t>(region_of_root[root[i]])];
     const double d = deviation[i];
     ++region.points;
     region.centroid += points_cad[i];
@@ -216,7 +217,7 @@ DefectResult findDefects(const Points& points_cad,
   std::vector<std::size_t> seen(regions.size(), 0);
   std::vector<std::size_t> sampled;
   for (const std::size_t i : kept) {
-    const auto r = static_cast<std::size_t>(region_of_root[sets.find(i)]);
+    const auto r = static_cast<std::size_t>(region_of_root[root[i]]);
     const std::size_t stride =
         faces.empty() ? (regions[r].points + kAreaSamples - 1) / kAreaSamples : 1;
     if (seen[r]++ % stride == 0) {
@@ -227,7 +228,7 @@ DefectResult findDefects(const Points& points_cad,
   std::vector<double> area_sum(regions.size(), 0.0);
   std::vector<std::size_t> area_count(regions.size(), 0);
   for (const std::size_t i : sampled) {
-    const auto r = static_cast<std::size_t>(region_of_root[sets.find(i)]);
+    const auto r = static_cast<std::size_t>(region_of_root[root[i]]);
     area_sum[r] += area[i];
     ++area_count[r];
   }
@@ -257,7 +258,7 @@ DefectResult findDefects(const Points& points_cad,
     result.regions.push_back(regions[static_cast<std::size_t>(order[r])]);
   }
   for (const std::size_t i : kept) {
-    result.point_region[i] = rank[static_cast<std::size_t>(region_of_root[sets.find(i)])];
+    result.point_region[i] = rank[static_cast<std::size_t>(region_of_root[root[i]])];
   }
   return result;
 }

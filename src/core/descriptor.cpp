@@ -251,14 +251,17 @@ void capAnalysed(const Points& points,
     kept.push_back((*analysed)[entry]);
     kept_points.push_back(points[static_cast<std::size_t>((*analysed)[entry])]);
   }
-  const PointIndex index(kept_points);
-  const auto entries = static_cast<long>(count);
-#pragma omp parallel for schedule(static)
-  for (long e = 0; e < entries; ++e) {
-    const auto u = static_cast<std::size_t>(e);
+  std::vector<std::size_t> others;
+  Points other_points;
+  for (std::size_t u = 0; u < count; ++u) {
     if (slot[u] < 0) {
-      slot[u] = index.nearest(points[static_cast<std::size_t>((*analysed)[u])], 1).front().index;
+      others.push_back(u);
+      other_points.push_back(points[static_cast<std::size_t>((*analysed)[u])]);
     }
+  }
+  const std::vector<Neighbour> nearest = PointIndex(kept_points).nearestEach(other_points);
+  for (std::size_t o = 0; o < others.size(); ++o) {
+    slot[others[o]] = nearest[o].index;
   }
   for (int& r : *representative) {
     r = slot[static_cast<std::size_t>(r)];

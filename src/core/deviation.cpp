@@ -7,6 +7,8 @@
 #include <limits>
 #include <unordered_set>
 
+#include <parallel/algorithm>
+
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/point_index.h"
 #include "freeform_inspection/surface_graph.h"
@@ -72,7 +74,8 @@ std::vector<double> sortedFinite(const std::vector<float>& values) {
       finite.push_back(v);
     }
   }
-  std::sort(finite.begin(), finite.end());
+  // Values alone, so equal keys are equal values: the same array for any thread count.
+  __gnu_parallel::sort(finite.begin(), finite.end());
   return finite;
 }
 

@@ -11,6 +11,7 @@
 
 #include "cloud_neighbours_internal.h"
 #include "median_internal.h"
+#include <Eigen/Geometry>
 #include <nanoflann.hpp>
 #include <parallel/algorithm>
 
@@ -146,6 +147,61 @@ std::vector<Neighbour> PointIndex::nearest(const Eigen::Vector3d& query, int k) 
   return result;
 }
 
+namespace {
+
+// Morton code of a point's position in `box` on a 1024³ lattice: nearby points get nearby codes.
+std::uint32_t mortonCode(const Eigen::Vector3d& p, const Eigen::AlignedBox3d& box) {
+  const Eigen::Vector3d extent = box.sizes().cwiseMax(std::numeric_limits<double>::min());
+  const Eigen::Vector3d unit = (p - box.min()).cwiseQuotient(extent);
+  std::uint32_t code = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    auto v = static_cast<std::uint32_t>(std::clamp(unit[axis], 0.0, 1.0) * 1023.0);
+    for (int bit = 0; bit < 10; ++bit) {
+      code |= ((v >> bit) & 1u) << (3 * bit + axis);
+    }
+  }
+  return code;
+}
+
+}  // namespace
+
+std::vector<Neighbour> PointIndex::nearestEach(const Points& queries) const {
+  std::vector<Neighbour> result(queries.size());
+  if (impl_->points.empty()) {
+    return result;
+  }
+  Eigen::AlignedBox3d box;
+  for (const auto& q : queries) {
+    if (q.allFinite()) {
+      box.extend(q);
+    }
+  }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> order;
+  order.reserve(queries.size());
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    if (queries[i].allFinite()) {
+      order.emplace_back(mortonCode(queries[i], box), static_cast<std::uint32_t>(i));
+    }
+  }
+  // Unique pairs: one order for any thread count (the answers do not depend on it anyway).
+  __gnu_parallel::sort(order.begin(), order.end());
+  const auto count = static_cast<std::ptrdiff_t>(order.size());
+#pragma omp parallel
+  {
+    double distance = 0.0;
+    std::uint32_t index = 0;
+    OrderedKnnResult found(1, &distance, &index);
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t o = 0; o < count; ++o) {
+      const std::uint32_t q = order[static_cast<std::size_t>(o)].second;
+      found.reset();
+      impl_->tree->findNeighbors(found, queries[q].data(), nanoflann::SearchParams());
+      result[q] = impl_->neighbour(queries[q], index);
+    }
+  }
+  return result;
+}
+
 std::vector<Neighbour> PointIndex::within(const Eigen::Vector3d& query, double radius) const {
   std::vector<Neighbour> result;
   if (!(radius >= 0.0) || impl_->points.empty() || !query.allFinite()) {
@@ -174,14 +230,28 @@ std::size_t PointIndex::size() const {
 namespace internal {
 namespace {
 
-// Rows for `queries` (positions into `points`) from a kd-tree over all the points.
+// Rows for `queries` (positions into `points`) from a kd-tree over all the points: the caller's
+// index over the same points when it has one, else one built here.
 void kdTreeRows(const Points& points,
                 const std::vector<std::uint32_t>& queries,
+                const PointIndex* index,
                 NeighbourTable& table) {
-  PointsAdaptor adaptor{&points};
-  const KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));
   const auto width = static_cast<std::size_t>(table.k);
   const auto count = static_cast<std::ptrdiff_t>(queries.size());
+  if (index != nullptr) {
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::ptrdiff_t q = 0; q < count; ++q) {
+      const std::size_t point = queries[static_cast<std::size_t>(q)];
+      const std::vector<Neighbour> found = index->nearest(points[point], table.k);
+      int* row = table.indices.data() + point * width;
+      for (std::size_t j = 0; j < width; ++j) {
+        row[j] = found[j].index;
+      }
+    }
+    return;
+  }
+  PointsAdaptor adaptor{&points};
+  const KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));
 #pragma omp parallel
   {
     std::vector<double> distances(width);
@@ -342,8 +412,11 @@ class PointGrid {
 };
 
 // The cube side: about the distance to the k-th neighbour, estimated from a kd-tree over every
-// 16th point (on a surface the k-th distance shrinks with the square root of the density). The
-// value only affects speed: every row is checked and the misses go to the kd-tree.
+// 16th point. How the k-th distance shrinks from that sample to the whole set depends on the
+// set's dimension at that scale: with the square root of the density on a surface, with the cube
+// root in a slab (a cloud whose noise is wider than its spacing). The dimension is read from the
+// sample's k-th and 4k-th distances (4^(1/d) apart). The value only affects speed: every row is
+// checked and the misses go to the kd-tree.
 double gridCell(const Points& points, std::size_t k) {
   Points sample;
   for (std::size_t i = 0; i < points.size(); i += kEstimateStride) {
@@ -352,18 +425,27 @@ double gridCell(const Points& points, std::size_t k) {
   PointsAdaptor adaptor{&sample};
   const KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));
   const std::size_t width = std::min(k, sample.size());
-  std::vector<double> distances(width);
-  std::vector<std::uint32_t> indices(width);
-  OrderedKnnResult found(width, distances.data(), indices.data());
+  const std::size_t wide = std::min(4 * k, sample.size());
+  std::vector<double> distances(wide);
+  std::vector<std::uint32_t> indices(wide);
+  OrderedKnnResult found(wide, distances.data(), indices.data());
   std::vector<double> kth;
+  std::vector<double> wide_kth;
   for (std::size_t i = 0; i < sample.size(); i += kEstimateStride) {
     found.reset();
     tree.findNeighbors(found, sample[i].data(), nanoflann::SearchParams());
     kth.push_back(std::sqrt(distances[width - 1]));
+    wide_kth.push_back(std::sqrt(distances[wide - 1]));
   }
   const auto at = kth.size() * 3 / 4;
   std::nth_element(kth.begin(), kth.begin() + static_cast<std::ptrdiff_t>(at), kth.end());
-  return kCellOverKth * kth[at] / std::sqrt(double(kEstimateStride));
+  std::nth_element(
+      wide_kth.begin(), wide_kth.begin() + static_cast<std::ptrdiff_t>(at), wide_kth.end());
+  double dimension = 2.0;
+  if (wide == 4 * k && wide_kth[at] > kth[at] && kth[at] > 0.0) {
+    dimension = std::clamp(std::log(4.0) / std::log(wide_kth[at] / kth[at]), 2.0, 3.0);
+  }
+  return kCellOverKth * kth[at] * std::pow(double(kEstimateStride), -1.0 / dimension);
 }
 
 // Thread scratch of the grid search: the candidates around one cube, and one row.
@@ -484,7 +566,7 @@ double tableDistance(const Points& points, const NeighbourTable& table, int colu
 // the block cannot prove exact, and small sets, go to the kd-tree. Either way a row is the exact
 // k nearest with the kd-tree's distance and tie rule, so the table does not depend on the path a
 // row took, nor on the thread count (each row is written once).
-NeighbourTable nearestNeighbourTable(const Points& points, int k) {
+NeighbourTable nearestNeighbourTable(const Points& points, int k, const PointIndex* index) {
   NeighbourTable table;
   table.k = static_cast<int>(std::min(static_cast<std::size_t>(std::max(k, 0)), points.size()));
   if (table.k == 0) {
@@ -497,7 +579,7 @@ NeighbourTable nearestNeighbourTable(const Points& points, int k) {
   if (!(cell > 0.0) || !std::isfinite(cell)) {
     misses.resize(points.size());
     std::iota(misses.begin(), misses.end(), 0u);
-    kdTreeRows(points, misses, table);
+    kdTreeRows(points, misses, index, table);
     return table;
   }
   const PointGrid grid(points, cell);
@@ -525,7 +607,7 @@ NeighbourTable nearestNeighbourTable(const Points& points, int k) {
   if (misses.size() * points.size() <= kBruteForceWork) {
     bruteForceRows(points, misses, table);
   } else {
-    kdTreeRows(points, misses, table);
+    kdTreeRows(points, misses, index, table);
   }
   return table;
 }

@@ -346,19 +346,31 @@ TEST(NeighbourTable, EveryRowIsTheKdTreeAnswer) {
     duplicated.push_back(sphere.points[i * 13]);
   }
   Points sparse(sphere.points.begin(), sphere.points.begin() + 3000);  // below the grid size
-  for (const Points* points : {&sphere.points, &grid, &duplicated, &sparse}) {
+  // A shell 4 spacings thick (noise wider than the spacing): three-dimensional at the scale of
+  // the neighbours, where the grid's cubes are sized by the cube root of the density.
+  Points slab = sphere.points;
+  std::mt19937 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  for (auto& p : slab) {
+    p *= 1.0 + noise(rng) / kRadius;
+  }
+  for (const Points* points : {&sphere.points, &grid, &duplicated, &sparse, &slab}) {
+    const PointIndex index(*points);
     for (const int k : {9, 24}) {
-      const internal::NeighbourTable table = internal::nearestNeighbourTable(*points, k);
-      ASSERT_EQ(table.k, k);
-      const PointIndex index(*points);
-      std::size_t differing = 0;
-      for (std::size_t i = 0; i < points->size(); ++i) {
-        const std::vector<Neighbour> expected = index.nearest((*points)[i], k);
-        for (int j = 0; j < k; ++j) {
-          differing += expected[std::size_t(j)].index == table.of(i)[j] ? 0 : 1;
+      // The misses answered by a kd-tree built inside, or by the caller's index.
+      for (const PointIndex* given : {static_cast<const PointIndex*>(nullptr), &index}) {
+        const internal::NeighbourTable table = internal::nearestNeighbourTable(*points, k, given);
+        ASSERT_EQ(table.k, k);
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < points->size(); ++i) {
+          const std::vector<Neighbour> expected = index.nearest((*points)[i], k);
+          for (int j = 0; j < k; ++j) {
+            differing += expected[std::size_t(j)].index == table.of(i)[j] ? 0 : 1;
+          }
         }
+        EXPECT_EQ(differing, 0u) << points->size() << " points, k = " << k
+                                 << (given != nullptr ? ", caller's index" : "");
       }
-      EXPECT_EQ(differing, 0u) << points->size() << " points, k = " << k;
     }
   }
   const Points tiny(sphere.points.begin(), sphere.points.begin() + 40);

@@ -186,6 +186,25 @@ TEST(PointIndex, NonFinitePointsAndQueriesAreIgnored) {
   EXPECT_TRUE(index.within(Eigen::Vector3d(nan, 0.0, 0.0), 1.0).empty());
 }
 
+// The batch answers each query as nearest(query, 1) would, whatever order it searches them in:
+// random queries, indexed points (distance 0), a duplicate (lower index), non-finite queries.
+TEST(PointIndex, NearestEachIsNearestOneForEveryQuery) {
+  Points points = randomPoints(2000, kSeed);
+  points.push_back(points[42]);
+  const PointIndex index(points);
+  Points batch = queries(points, kSeed);
+  batch.push_back(points[42]);
+  batch.emplace_back(std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0);
+  const std::vector<Neighbour> found = index.nearestEach(batch);
+  ASSERT_EQ(found.size(), batch.size());
+  for (std::size_t q = 0; q + 1 < batch.size(); ++q) {
+    expectSame(bruteNearest(points, batch[q], 1), {found[q]}, "query " + std::to_string(q));
+  }
+  EXPECT_EQ(found[batch.size() - 2].index, 42);
+  EXPECT_EQ(found.back().index, -1);
+  EXPECT_TRUE(PointIndex(Points()).nearestEach(batch).front().index == -1);
+}
+
 TEST(PointIndex, ConcurrentQueriesAgreeWithSerialOnes) {
   const Points points = randomPoints(2000, kSeed);
   const PointIndex index(points);
