@@ -324,15 +324,18 @@ constexpr double kCellOverKth = 1.3;
 // hash from cube coordinates to the cube's range of points.
 class PointGrid {
  public:
-  PointGrid(const Points& points, double cell) : points_(points), cell_(cell) {
+  PointGrid(const Points& points, double cell) : cell_(cell) {
     origin_ = points.front();
     for (const auto& p : points) {
       origin_ = origin_.cwiseMin(p);
     }
     const std::size_t n = points.size();
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      keyed[i] = {key(coordinates(points[i])), static_cast<std::uint32_t>(i)};
+    const auto count = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      keyed[u] = {key(coordinates(points[u])), static_cast<std::uint32_t>(u)};
     }
     __gnu_parallel::sort(keyed.begin(), keyed.end());  // unique keys: any thread count agrees
     order_.resize(n);
@@ -343,10 +346,19 @@ class PointGrid {
         keys_.push_back(keyed[i].first);
       }
     }
+    // The points copied in cube order: a block of cubes is then read from contiguous memory
+    // rather than gathered from all over the cloud, for each of the 27 blocks a point is in.
+    sorted_.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+      sorted_[static_cast<std::size_t>(i)] = points[order_[static_cast<std::size_t>(i)]];
+    }
     starts_.push_back(static_cast<std::uint32_t>(n));
     std::size_t capacity = 16;
+    hash_shift_ = 60;
     while (capacity < 2 * keys_.size()) {
       capacity *= 2;
+      --hash_shift_;
     }
     slots_.assign(capacity, -1);
     for (std::size_t c = 0; c < keys_.size(); ++c) {
@@ -358,11 +370,23 @@ class PointGrid {
     }
   }
 
-  std::size_t cubes() const { return keys_.size(); }
+  std::size_t cubes() const {
+    return keys_.size();
+  }
   // Points of cube c: order()[starts(c) .. starts(c + 1)).
-  std::size_t start(std::size_t c) const { return starts_[c]; }
-  const std::vector<std::uint32_t>& order() const { return order_; }
-  Eigen::Array3i cubeOf(std::size_t c) const { return decode(keys_[c]); }
+  std::size_t start(std::size_t c) const {
+    return starts_[c];
+  }
+  const std::vector<std::uint32_t>& order() const {
+    return order_;
+  }
+  // Position of the i-th point in cube order: points[order()[i]].
+  const Eigen::Vector3d& position(std::size_t i) const {
+    return sorted_[i];
+  }
+  Eigen::Array3i cubeOf(std::size_t c) const {
+    return decode(keys_[c]);
+  }
 
   // Index of the cube at integer coordinates, or -1 when empty.
   std::int64_t find(const Eigen::Array3i& at) const {
@@ -382,7 +406,9 @@ class PointGrid {
   Eigen::Vector3d corner(const Eigen::Array3i& at) const {
     return origin_ + cell_ * at.cast<double>().matrix();
   }
-  double cell() const { return cell_; }
+  double cell() const {
+    return cell_;
+  }
 
  private:
   static constexpr int kSpan = 1 << 21;
@@ -398,17 +424,20 @@ class PointGrid {
     const std::uint64_t mask = kSpan - 1;
     return {int(k >> 42), int((k >> 21) & mask), int(k & mask)};
   }
+  // Fibonacci hashing: the top bits of the product depend on every bit of the key (the middle
+  // bits ignored x, so a slab's cubes that differ only in x all probed one chain).
   std::size_t hash(std::uint64_t k) const {
-    return std::size_t((k * 0x9E3779B97F4A7C15ull) >> 20) & (slots_.size() - 1);
+    return std::size_t((k * 0x9E3779B97F4A7C15ull) >> hash_shift_);
   }
 
-  const Points& points_;
   double cell_;
   Eigen::Vector3d origin_;
   std::vector<std::uint32_t> order_;
+  LargeVector<Eigen::Vector3d> sorted_;
   std::vector<std::uint32_t> starts_;
   std::vector<std::uint64_t> keys_;
   std::vector<std::int64_t> slots_;
+  int hash_shift_ = 60;  // 64 − log2(slot count)
 };
 
 // The cube side: about the distance to the k-th neighbour, estimated from a kd-tree over every
@@ -459,8 +488,7 @@ struct GridScratch {
 // Rows of the points of cube c from the 3×3×3 cubes around it. A row is exact when its k-th
 // distance is below the query's clearance to the outside of that block (any point outside is
 // farther, by at least one coordinate); the others are appended to `misses`.
-void gridRows(const Points& points,
-              const PointGrid& grid,
+void gridRows(const PointGrid& grid,
               std::size_t c,
               GridScratch& scratch,
               NeighbourTable& table,
@@ -479,11 +507,11 @@ void gridRows(const Points& points,
         }
         const auto o = static_cast<std::size_t>(other);
         for (std::size_t i = grid.start(o); i < grid.start(o + 1); ++i) {
-          const std::uint32_t point = grid.order()[i];
-          scratch.x.push_back(points[point].x());
-          scratch.y.push_back(points[point].y());
-          scratch.z.push_back(points[point].z());
-          scratch.index.push_back(point);
+          const Eigen::Vector3d& p = grid.position(i);
+          scratch.x.push_back(p.x());
+          scratch.y.push_back(p.y());
+          scratch.z.push_back(p.z());
+          scratch.index.push_back(grid.order()[i]);
         }
       }
     }
@@ -500,7 +528,7 @@ void gridRows(const Points& points,
   double previous_kth = std::numeric_limits<double>::infinity();
   for (std::size_t i = grid.start(c); i < grid.start(c + 1); ++i) {
     const std::uint32_t point = grid.order()[i];
-    const Eigen::Vector3d& q = points[point];
+    const Eigen::Vector3d& q = grid.position(i);
     const double clearance = std::min((q - low).minCoeff(), (high - q).minCoeff()) - margin;
     if (candidates < width || !(clearance > 0.0)) {
       misses.push_back(point);
@@ -590,8 +618,7 @@ NeighbourTable nearestNeighbourTable(const Points& points, int k, const PointInd
     GridScratch scratch;
 #pragma omp for schedule(dynamic, 64)
     for (std::ptrdiff_t c = 0; c < cubes; ++c) {
-      gridRows(points,
-               grid,
+      gridRows(grid,
                static_cast<std::size_t>(c),
                scratch,
                table,
