@@ -5,12 +5,14 @@
 #   CASES      cases per cell of the table (default 10)
 #   MESH_DIR   extra CAD meshes in metres (*.stl) to evaluate besides the shipped blade
 # Environment: FIRST_SEED (default 1) is the seed of each row's first case, so other blocks of
-# seeds can be run (FIRST_SEED=7 with 6 cases: seeds 7-12).
+# seeds can be run (FIRST_SEED=7 with 6 cases: seeds 7-12). EVAL_FLAGS (default empty) is added to
+# every registration_eval call, e.g. EVAL_FLAGS="--config other.yaml" to compare a setting.
 # Prints a markdown table: success / ok / ambiguous / failed / wrong-but-ok and the mean time.
 set -euo pipefail
 build="$1"
 cases="${2:-10}"
 first_seed="${FIRST_SEED:-1}"
+read -r -a extra_flags <<< "${EVAL_FLAGS:-}"
 mesh_dir="${3:-}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 eval_bin="${build}/registration_eval"
@@ -35,7 +37,7 @@ for part in "${parts[@]}"; do
     flags="${set#*|}"
     # shellcheck disable=SC2086
     summary=$("${eval_bin}" --cad "${file}" --cad-scale "${scale}" --cases "${cases}" \
-                --first-seed "${first_seed}" ${flags} | tail -n 1)
+                --first-seed "${first_seed}" ${flags} "${extra_flags[@]}" | tail -n 1)
     # "# success S/N, ok O, ambiguous A, failed F, wrong-but-ok W, mean T s per scan"
     read -r success ok ambiguous failed wrong seconds < <(echo "${summary}" |
       sed -E 's/# success ([0-9]+\/[0-9]+), ok ([0-9]+), ambiguous ([0-9]+), failed ([0-9]+), wrong-but-ok ([0-9]+), mean ([0-9.]+) s per scan/\1 \2 \3 \4 \5 \6/')

@@ -23,6 +23,10 @@ struct CorrespondenceConfig {
   double descriptor_tolerance = 0.02;
   int min_candidates = 12;  ///< the nearest in descriptor space are kept even beyond the tolerance
   int max_candidates = 32;  ///< at most this many per feature, best agreement first
+  /// When no pose explains the scan with max_candidates, the search is run once more with this
+  /// many per feature (the true place can rank lower on a partial or noisy scan); a value not
+  /// above max_candidates turns the second search off.
+  int retry_candidates = 96;
   /// Candidates of one feature are at least this many CAD cells apart, so a ridge of similar
   /// descriptors yields candidates spread along it rather than a clump at one end.
   double separation_cells = 1.5;

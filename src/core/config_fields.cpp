@@ -30,6 +30,7 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"correspondence/descriptor_tolerance", &config.correspondence.descriptor_tolerance},
       {"correspondence/min_candidates", &config.correspondence.min_candidates},
       {"correspondence/max_candidates", &config.correspondence.max_candidates},
+      {"correspondence/retry_candidates", &config.correspondence.retry_candidates},
       {"correspondence/separation_cells", &config.correspondence.separation_cells},
       {"registration/pair_tolerance_cells", &config.registration.pair_tolerance_cells},
       {"registration/normal_tolerance_deg", &config.registration.normal_tolerance_deg},

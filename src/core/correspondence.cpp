@@ -62,6 +62,9 @@ std::vector<std::string> validate(const CorrespondenceConfig& config) {
   if (config.max_candidates < config.min_candidates) {
     errors.push_back("correspondence.max_candidates must be at least min_candidates");
   }
+  if (config.retry_candidates < 0) {
+    errors.push_back("correspondence.retry_candidates must be at least 0");
+  }
   if (!(config.separation_cells >= 0.0 && std::isfinite(config.separation_cells))) {
     errors.push_back("correspondence.separation_cells must be a finite value >= 0");
   }

@@ -514,6 +514,58 @@ void registerScan(const Model& model,
                            ", fitness " + std::to_string(result->fitness);
 }
 
+// Stage times of a second attempt added to those of the first, stage by stage.
+void addTimings(const std::vector<StageTiming>& extra, std::vector<StageTiming>* timings) {
+  for (const StageTiming& timing : extra) {
+    const auto same = std::find_if(timings->begin(), timings->end(), [&](const StageTiming& t) {
+      return t.stage == timing.stage;
+    });
+    if (same == timings->end()) {
+      timings->push_back(timing);
+    } else {
+      same->seconds += timing.seconds;
+    }
+  }
+}
+
+// registerScan(), and when no pose explained the scan although candidates were found, once more
+// with `retry_candidates` per feature: on a partial or noisy scan a feature's true place can rank
+// below the first max_candidates in descriptor space (a partial view's wide scales read flatter
+// than the CAD's there). Scans that register at the first attempt are not touched.
+void registerWidening(const Model& model,
+                      const Points& scan_points,
+                      const DescriptorResult& scan,
+                      bool oriented,
+                      const PipelineConfig& config,
+                      const ProgressCallback& progress,
+                      InspectionResult* result) {
+  const InspectionResult before = *result;
+  registerScan(model, scan_points, scan, oriented, config, progress, result);
+  const int first = config.correspondence.max_candidates;
+  const int wider = config.correspondence.retry_candidates;
+  if (result->registration != RegistrationStatus::kFailed ||
+      result->status.code != StatusCode::kRegistrationFailed || result->counts.candidates == 0 ||
+      wider <= first) {
+    return;
+  }
+  PipelineConfig widened = config;
+  widened.correspondence.max_candidates = wider;
+  InspectionResult retry = before;
+  retry.timings.clear();
+  registerScan(model, scan_points, scan, oriented, widened, progress, &retry);
+  if (retry.registration == RegistrationStatus::kFailed) {
+    addTimings(retry.timings, &result->timings);
+    return;
+  }
+  std::vector<StageTiming> timings = result->timings;
+  addTimings(retry.timings, &timings);
+  retry.timings = std::move(timings);
+  retry.warnings.push_back("registered with up to " + std::to_string(wider) +
+                           " CAD candidates per feature (correspondence.retry_candidates): with " +
+                           std::to_string(first) + " no pose explained the scan");
+  *result = std::move(retry);
+}
+
 // clean → descriptors → registration → deviation, stopping at the first stage that is not ok
 // or that the caller cancels.
 void runStages(const Model& model,
@@ -558,7 +610,7 @@ void runStages(const Model& model,
   // A scanner's normals, a delivered mesh's winding and a range image's view point out of
   // the material; normals this pipeline estimated otherwise may not.
   const bool oriented = !scan.normals.empty() || !scan.faces.empty() || !hints.normals.empty();
-  registerScan(model, cleaned.scan.points, descriptors, oriented, config, progress, result);
+  registerWidening(model, cleaned.scan.points, descriptors, oriented, config, progress, result);
   if (result->registration == RegistrationStatus::kFailed || !watch->proceed("deviation", 0.9)) {
     return;
   }

@@ -231,6 +231,52 @@ TEST(Registration, ReportsCountsAndEveryStageTiming) {
   EXPECT_NE(result.status.message.find("registered"), std::string::npos);
 }
 
+TEST(Registration, WiderCandidateSearchRegistersWhatTheFirstMissed) {
+  // One candidate per feature (the best descriptor match) leaves no consistent true triplet on a
+  // noisy scan; the second search with 32 per feature, run only because the first found no pose,
+  // must register it, report why, and count each stage's time once.
+  const SyntheticScan truth = makeCase(blade(), caseConfig(1, 0.005, false, 0.0));
+  PipelineConfig narrow;
+  narrow.correspondence.min_candidates = 1;
+  narrow.correspondence.max_candidates = 1;
+  narrow.correspondence.retry_candidates = 0;  // off
+  const InspectionResult first = inspect(blade(), truth.scan, narrow);
+  ASSERT_EQ(first.registration, RegistrationStatus::kFailed);
+  EXPECT_EQ(first.status.code, StatusCode::kRegistrationFailed) << first.status.message;
+
+  PipelineConfig widening = narrow;
+  widening.correspondence.retry_candidates = 32;
+  const InspectionResult result = inspect(blade(), truth.scan, widening);
+  ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+  const PoseError error = poseError(result, truth, blade().bounds().diagonal());
+  EXPECT_LT(error.rotation_deg, 2.0);
+  EXPECT_LT(error.centroid_ratio, 0.01);
+  EXPECT_GT(result.counts.candidates, first.counts.candidates);
+  EXPECT_TRUE(std::any_of(result.warnings.begin(), result.warnings.end(), [](const auto& w) {
+    return w.find("correspondence.retry_candidates") != std::string::npos;
+  }));
+  std::vector<std::string> stages;
+  for (const auto& timing : result.timings) {
+    EXPECT_EQ(std::count(stages.begin(), stages.end(), timing.stage), 0) << timing.stage;
+    stages.push_back(timing.stage);
+  }
+  EXPECT_EQ(stages.back(), "total");
+}
+
+TEST(Registration, ScanThatRegistersAtOnceIsNotSearchedAgain) {
+  // The second search only runs after a failure: a scan that registers gives the same pose and
+  // counts whatever retry_candidates says.
+  const SyntheticScan truth = makeCase(blade(), caseConfig(2, 0.005, true, 0.0));
+  PipelineConfig off;
+  off.correspondence.retry_candidates = 0;
+  const InspectionResult without = inspect(blade(), truth.scan, off);
+  const InspectionResult with = inspect(blade(), truth.scan, PipelineConfig());
+  ASSERT_EQ(with.registration, RegistrationStatus::kOk) << with.status.message;
+  EXPECT_EQ(without.T_cad_scan.matrix(), with.T_cad_scan.matrix());
+  EXPECT_EQ(without.counts.candidates, with.counts.candidates);
+  EXPECT_EQ(without.warnings, with.warnings);
+}
+
 TEST(Registration, SymmetricPartIsNeverAConfidentWrongPose) {
   // A 100 × 60 × 40 mm box looks the same after 180° turns about its axes: from a full scan no
   // method can tell which turn is right. Either the pose is right, or the result says ambiguous
