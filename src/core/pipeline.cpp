@@ -555,6 +555,9 @@ void registerWidening(const Model& model,
   registerScan(model, scan_points, scan, oriented, widened, progress, &retry);
   if (retry.registration == RegistrationStatus::kFailed) {
     addTimings(retry.timings, &result->timings);
+    result->warnings.push_back("searched again with up to " + std::to_string(wider) +
+                               " CAD candidates per feature (correspondence.retry_candidates): "
+                               "no pose either");
     return;
   }
   std::vector<StageTiming> timings = result->timings;
