@@ -553,6 +553,9 @@ void registerWidening(const Model& model,
   InspectionResult retry = before;
   retry.timings.clear();
   registerScan(model, scan_points, scan, oriented, widened, progress, &retry);
+  if (retry.status.code == StatusCode::kCancelled) {  // the caller stopped the second search
+    result->status = retry.status;
+  }
   if (retry.registration == RegistrationStatus::kFailed) {
     addTimings(retry.timings, &result->timings);
     result->warnings.push_back("searched again with up to " + std::to_string(wider) +

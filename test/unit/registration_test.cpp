@@ -263,6 +263,23 @@ TEST(Registration, WiderCandidateSearchRegistersWhatTheFirstMissed) {
   EXPECT_EQ(stages.back(), "total");
 }
 
+TEST(Registration, CancelDuringTheWiderSearchIsReportedAsCancelled) {
+  const SyntheticScan truth = makeCase(blade(), caseConfig(1, 0.005, false, 0.0));
+  PipelineConfig widening;
+  widening.correspondence.min_candidates = 1;
+  widening.correspondence.max_candidates = 1;
+  widening.correspondence.retry_candidates = 32;
+  int searches = 0;
+  const ProgressCallback stop_second = [&](const std::string& stage, double) {
+    searches += stage == "features" ? 1 : 0;
+    return searches < 2;
+  };
+  const InspectionResult result = inspect(blade(), truth.scan, widening, stop_second);
+  EXPECT_EQ(searches, 2);
+  EXPECT_EQ(result.registration, RegistrationStatus::kFailed);
+  EXPECT_EQ(result.status.code, StatusCode::kCancelled) << result.status.message;
+}
+
 TEST(Registration, ScanThatRegistersAtOnceIsNotSearchedAgain) {
   // The second search only runs after a failure: a scan that registers gives the same pose and
   // counts whatever retry_candidates says.
