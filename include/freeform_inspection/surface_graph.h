@@ -27,6 +27,10 @@ struct SurfaceSamples {
   const Points* normals = nullptr;                 ///< unit, outward (zero where unknown)
   const std::vector<double>* area = nullptr;       ///< [m^2] per point
   const std::vector<double>* curvature = nullptr;  ///< [1/m] mean curvature per point
+  /// Where each point falls into a cell, when not at `points` (a noisy cloud's points moved
+  /// onto their fitted planes, so the noise does not spread one surface over several layers of
+  /// cells); centroids stay the area-weighted means of `points`.
+  const Points* cell_points = nullptr;
 };
 
 /// Cells and their adjacency (CSR).

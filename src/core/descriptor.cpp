@@ -284,6 +284,26 @@ std::vector<T> select(const std::vector<T>& values, const std::vector<int>& indi
   return selected;
 }
 
+// Where the points of a noisy cloud fall into cells: each moved onto its neighbourhood's plane
+// (the curvature fit grew to 3 σ, so the plane averages the noise out), unless that is more than
+// 3 σ away (an outlier keeps its place). The raw points spread one surface over layers of cells
+// about as thick as the noise: a partial view of the UR10e forearm at 0.5 % noise had 8,200
+// cells against 4,000 noise-free, and each geodesic ball costs its cells. Only the cells change:
+// their centroids are still means of the measured points (moving those too lost registrations,
+// docs/descriptors.md).
+Points pointsOnPlanes(const Points& points, const Points& on_plane, double noise_sigma) {
+  if (on_plane.size() != points.size() || !(noise_sigma > 0.0)) {
+    return {};
+  }
+  Points moved = points;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if ((on_plane[i] - points[i]).norm() <= 3.0 * noise_sigma) {
+      moved[i] = on_plane[i];
+    }
+  }
+  return moved;
+}
+
 Status checkRadii(const std::vector<double>& radii) {
   for (std::size_t k = 0; k < radii.size(); ++k) {
     if (!(radii[k] > 0.0) || !std::isfinite(radii[k]) || (k > 0 && radii[k] <= radii[k - 1])) {
@@ -409,8 +429,15 @@ DescriptorResult computeDescriptors(const Points& points,
           ? internal::cloudEdges(
                 surface, result.curvature.normals, table, config.cloud_edge_neighbours, edge_length)
           : meshEdges(faces);
-  const SurfaceSamples samples{
-      &surface, &result.curvature.normals, &result.curvature.area, &result.curvature.mean};
+  const Points cell_points =
+      faces.empty() && result.cloud_neighbours > config.cloud_curvature.neighbours
+          ? pointsOnPlanes(surface, result.curvature.on_plane, noise_sigma)
+          : Points();
+  const SurfaceSamples samples{&surface,
+                               &result.curvature.normals,
+                               &result.curvature.area,
+                               &result.curvature.mean,
+                               cell_points.empty() ? nullptr : &cell_points};
   const double cell = config.cell_ratio * radii.front();
   result.graph = buildSurfaceGraph(samples, edges, cell);
   if (result.graph.size() > 0) {  // before the points of a thinned cloud are mapped back

@@ -51,7 +51,8 @@ std::vector<int> assignCells(const SurfaceSamples& s,
                              double cell_size,
                              std::size_t* cell_count) {
   const std::size_t n = s.points->size();
-  const std::vector<std::uint64_t> keys = voxelKeys(*s.points, cell_size);
+  const std::vector<std::uint64_t> keys =
+      voxelKeys(s.cell_points != nullptr ? *s.cell_points : *s.points, cell_size);
   DisjointSets sets(n);
   for (const auto& [a, b] : edges) {
     const auto ua = static_cast<std::size_t>(a);

@@ -234,8 +234,10 @@ TEST(Registration, ReportsCountsAndEveryStageTiming) {
 TEST(Registration, WiderCandidateSearchRegistersWhatTheFirstMissed) {
   // One candidate per feature (the best descriptor match) leaves no consistent true triplet on a
   // noisy scan; the second search with 32 per feature, run only because the first found no pose,
-  // must register it, report why, and count each stage's time once.
-  const SyntheticScan truth = makeCase(blade(), caseConfig(1, 0.005, false, 0.0));
+  // must register it, report why, and count each stage's time once. Seed 2: seeds 2-8 all
+  // fail with one candidate (seed 1 no longer does since a noisy cloud's cells are binned from
+  // its planes).
+  const SyntheticScan truth = makeCase(blade(), caseConfig(2, 0.005, false, 0.0));
   PipelineConfig narrow;
   narrow.correspondence.min_candidates = 1;
   narrow.correspondence.max_candidates = 1;
@@ -264,7 +266,7 @@ TEST(Registration, WiderCandidateSearchRegistersWhatTheFirstMissed) {
 }
 
 TEST(Registration, CancelDuringTheWiderSearchIsReportedAsCancelled) {
-  const SyntheticScan truth = makeCase(blade(), caseConfig(1, 0.005, false, 0.0));
+  const SyntheticScan truth = makeCase(blade(), caseConfig(2, 0.005, false, 0.0));
   PipelineConfig widening;
   widening.correspondence.min_candidates = 1;
   widening.correspondence.max_candidates = 1;
