@@ -391,8 +391,9 @@ TEST(Descriptor, NoisyCloudFitGrowsAsSoonAsTheNoiseOutreachesIt) {
 // Noise of 1 % of the diagonal spreads the raw points of one surface over layers of cells about
 // as thick as the noise; each noisy point falls into its cell from its neighbourhood's plane
 // instead, so the graph has nearer the cells of the noise-free cloud (fewer cells: every
-// geodesic ball is cheaper). A point 10 σ off the surface is an outlier: it keeps its own place and
-// never joins a cell of the surface.
+// geodesic ball is cheaper). A point 10 σ off the surface never joins a cell of the surface (it
+// keeps its measured place for binning; measured, it would not join one from its plane either:
+// no surface edge reaches it).
 TEST(Descriptor, NoisyCloudCellsFollowTheSurfaceNotTheNoise) {
   const NoisySphere noisy = noisySphereCloud(0.01);
   const NoisySphere clean = noisySphereCloud(0.0);
