@@ -41,11 +41,15 @@ struct DescriptorConfig {
   std::size_t max_analysed_points = 100000;  ///< clouds: at most this many of the thinned
                                              ///< points are analysed, evenly spread (a 1M-point
                                              ///< scan costs a 100k one); 0 = no cap
-  double noise_fit_multiple = 3.0;       ///< clouds: the curvature fit's neighbourhood reaches at
-                                         ///< least this × the scan's measured noise σ (more
-                                         ///< neighbours than cloud_neighbours on a noisy scan)
-  int max_cloud_neighbours = 256;        ///< clouds: ... with at most this many neighbours
-  MeshCurvatureConfig mesh_curvature;    ///< one-ring curvature on meshes
+  double noise_fit_multiple = 3.0;     ///< clouds: the curvature fit's neighbourhood reaches at
+                                       ///< least this × the scan's measured noise σ (more
+                                       ///< neighbours than cloud_neighbours on a noisy scan)
+  int max_cloud_neighbours = 256;      ///< clouds: ... with at most this many neighbours
+  int noise_fit_budget = 128;          ///< clouds: a noisy cloud with more points than this
+                                       ///< within noise_fit_multiple · σ is analysed on a random
+                                       ///< share with about this many there (at least 4 per cell
+                                       ///< area); 0 analyses every thinned point
+  MeshCurvatureConfig mesh_curvature;  ///< one-ring curvature on meshes
   CloudCurvatureConfig cloud_curvature;  ///< local-quadric curvature on clouds
 };
 
@@ -62,19 +66,31 @@ std::vector<int> scaleLevels(const std::vector<double>& radii, double cell, doub
 
 /// Descriptors of one surface (the CAD or a scan).
 struct DescriptorResult {
-  Status status;                   ///< kDegenerateInput when the surface has no usable area
-  std::vector<double> radii;       ///< [m] r_k
-  CurvatureResult curvature;       ///< curvature of the analysed points (see below)
-  std::vector<int> analysed;       ///< indices of the points the curvature belongs to: all of
-                                   ///< them, or one per voxel of a thinned dense cloud
-  SurfaceGraph graph;              ///< cells on which the balls were grown
-  Eigen::MatrixXd cell_values;     ///< cells × K: V_k of every cell
-  Eigen::MatrixXd cell_curvature;  ///< cells × K: H̃_k of every cell [1/m]
-  int cloud_neighbours = 0;        ///< clouds: neighbours of the curvature fit (0 on meshes)
+  Status status;                    ///< kDegenerateInput when the surface has no usable area
+  std::vector<double> radii;        ///< [m] r_k
+  CurvatureResult curvature;        ///< curvature of the analysed points (see below)
+  std::vector<int> analysed;        ///< indices of the points the curvature belongs to: all of
+                                    ///< them, or one per voxel of a thinned dense cloud
+  SurfaceGraph graph;               ///< cells on which the balls were grown
+  Eigen::MatrixXd cell_values;      ///< cells × K: V_k of every cell
+  Eigen::MatrixXd cell_curvature;   ///< cells × K: H̃_k of every cell [1/m]
+  std::vector<int> representative;  ///< thinned clouds: per point, its entry in `analysed` (its
+                                    ///< own, or the analysed point it joined); else empty
+  int cloud_neighbours = 0;         ///< clouds: neighbours of the curvature fit (0 on meshes)
   std::vector<std::string> warnings;
 
   /// V_k of point i: the value of its cell (NaN for a point without area).
   double value(std::size_t point, int scale) const;
+
+  /// True for a cloud whose curvature fit grew with its measured noise: then the points moved
+  /// onto their neighbourhood planes (curvature.on_plane) carry the surface with the noise
+  /// averaged out, and both the cells and the scan's ICP use them.
+  bool fitGrew(const DescriptorConfig& config) const;
+
+  /// Every one of `points` (those the descriptors were computed from) moved along its analysed
+  /// point's normal onto that point's fitted plane: curvature.on_plane for the analysed points,
+  /// the same plane for the points that joined them. Empty unless curvature.on_plane is set.
+  Points onFittedPlanes(const Points& points) const;
 };
 
 /// @brief Computes V_k for every point of a mesh (faces non-empty) or a cloud (faces empty).

@@ -21,6 +21,7 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"descriptor/max_analysed_points", &config.descriptor.max_analysed_points},
       {"descriptor/noise_fit_multiple", &config.descriptor.noise_fit_multiple},
       {"descriptor/max_cloud_neighbours", &config.descriptor.max_cloud_neighbours},
+      {"descriptor/noise_fit_budget", &config.descriptor.noise_fit_budget},
       {"features/rare_fraction", &config.features.rare_fraction},
       {"features/min_persistent_scales", &config.features.min_persistent_scales},
       {"features/separation_ratio", &config.features.separation_ratio},

@@ -44,6 +44,7 @@ void addSettings(const DescriptorConfig& config, Fnv1a* hash) {
   hash->add(config.cloud_curvature.neighbours);
   hash->add(config.noise_fit_multiple);
   hash->add(config.max_cloud_neighbours);
+  hash->add(config.noise_fit_budget);
 }
 
 std::string descriptorCacheKey(const TriangleMesh& mesh, const DescriptorConfig& config) {

@@ -278,11 +278,12 @@ void registerScan(const Model& model,
   // surface with the noise averaged out. ICP on them is not drawn by closest points that the
   // noise pushed onto other faces (from the true pose, a tube turned 2-6° about its axis at 2 %
   // noise, 0.5-1° on the planes). The fit's numbers stay those of the measured points.
-  const bool on_planes = scan.cloud_neighbours > config.descriptor.cloud_curvature.neighbours &&
-                         !scan.curvature.on_plane.empty();
+  const Points plane_points =
+      scan.fitGrew(config.descriptor) ? scan.onFittedPlanes(scan_points) : Points();
+  const bool on_planes = !plane_points.empty();
   const auto refine = [&](const Eigen::Isometry3d& initial) {
     IcpResult refined_pose = refinePose(model.query(),
-                                        on_planes ? scan.curvature.on_plane : scan_points,
+                                        on_planes ? plane_points : scan_points,
                                         initial,
                                         coarse_truncation,
                                         diagonal,
