@@ -77,20 +77,23 @@ struct DescriptorResult {
   std::vector<int> representative;  ///< thinned clouds: per point, its entry in `analysed` (its
                                     ///< own, or the analysed point it joined); else empty
   int cloud_neighbours = 0;         ///< clouds: neighbours of the curvature fit (0 on meshes)
+  Points on_quadric;                ///< clouds whose fit grew (fitGrew()): each analysed point
+                                    ///< moved onto its fit neighbourhood's quadric; else empty
   std::vector<std::string> warnings;
 
   /// V_k of point i: the value of its cell (NaN for a point without area).
   double value(std::size_t point, int scale) const;
 
   /// True for a cloud whose curvature fit grew with its measured noise: then the points moved
-  /// onto their neighbourhood planes (curvature.on_plane) carry the surface with the noise
-  /// averaged out, and both the cells and the scan's ICP use them.
+  /// onto their neighbourhood planes (curvature.on_plane) bin the cells, and the points moved
+  /// onto their neighbourhood quadrics (on_quadric) carry the scan's ICP, both with the noise
+  /// averaged out.
   bool fitGrew(const DescriptorConfig& config) const;
 
-  /// Every one of `points` (those the descriptors were computed from) moved along its analysed
-  /// point's normal onto that point's fitted plane: curvature.on_plane for the analysed points,
-  /// the same plane for the points that joined them. Empty unless curvature.on_plane is set.
-  Points onFittedPlanes(const Points& points) const;
+  /// Every one of `points` (those the descriptors were computed from) moved onto the surface
+  /// fitted around its analysed point: `on_quadric` for the analysed points, the plane through
+  /// it with that point's normal for the points that joined them. Empty unless on_quadric is set.
+  Points onFittedSurfaces(const Points& points) const;
 };
 
 /// @brief Computes V_k for every point of a mesh (faces non-empty) or a cloud (faces empty).

@@ -62,6 +62,16 @@ CurvatureResult computeCloudCurvature(const Points& points,
                                       int table_k,
                                       NeighbourTable* table);
 
+/// @brief Every point moved along its normal onto the least-squares quadric of its first `k`
+/// table neighbours (h = a + b·u + c·v + d·u² + e·u·v + f·v² over the tangent plane: a moving
+/// least-squares surface of degree 2): the noise averaged out like on the neighbourhood's plane,
+/// without the plane's bias of about H·⟨|t|²⟩/2 into every bend. A point whose neighbours span
+/// too little of the plane for six coefficients goes onto the plane through their mean.
+Points ontoLocalQuadrics(const Points& points,
+                         const Points& normals,
+                         const NeighbourTable& table,
+                         int k);
+
 /// @brief cloudEdges() from a table of the same points (the first `neighbours` + 1 columns are
 /// used; the table must have at least that many or all the points). Each edge once as
 /// (lower, higher), in no particular order.

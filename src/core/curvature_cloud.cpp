@@ -16,6 +16,7 @@
 
 #include "cloud_neighbours_internal.h"
 #include "cloud_visibility_internal.h"
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include "freeform_inspection/curvature.h"
@@ -452,13 +453,67 @@ Eigen::Matrix<double, 2, 3> tangentBasis(const Eigen::Vector3d& normal) {
   return basis;
 }
 
+// Neighbours whose normal turned by more than this are on the other side of a thin wall.
+constexpr double kOppositeSide = -0.5;
+
+// Relative pivot below which the quadric's six coefficients are not all determined (neighbours
+// on a line, or too few across it), measured on coordinates scaled to unit tangent spread.
+constexpr double kQuadricPivotRatio = 1e-4;
+
+// The height over the point's tangent plane of the quadric fitted to its neighbours' heights.
+Eigen::Vector3d ontoQuadric(
+    const Points& points, const Points& normals, const int* neighbours, int k, std::size_t centre) {
+  const Eigen::Vector3d& p = points[centre];
+  const Eigen::Vector3d& normal = normals[centre];
+  const Eigen::Matrix<double, 2, 3> basis = tangentBasis(normal);
+  // Normal equations of the six coefficients, accumulated in one pass (lower triangle).
+  using Vector6 = Eigen::Matrix<double, 6, 1>;
+  using Matrix6 = Eigen::Matrix<double, 6, 6>;
+  Matrix6 normal_matrix = Matrix6::Zero();
+  Vector6 rhs = Vector6::Zero();
+  for (int j = 0; j < k; ++j) {
+    const auto other = std::size_t(neighbours[j]);
+    if (normal.dot(normals[other]) < kOppositeSide) {
+      continue;
+    }
+    const Eigen::Vector3d d = points[other] - p;
+    const Eigen::Vector2d t = basis * d;
+    Vector6 row;
+    row << 1.0, t.x(), t.y(), t.x() * t.x(), t.x() * t.y(), t.y() * t.y();
+    for (int column = 0; column < 6; ++column) {
+      for (int r = column; r < 6; ++r) {
+        normal_matrix(r, column) += row[r] * row[column];
+      }
+    }
+    rhs += row * normal.dot(d);
+  }
+  const double used = normal_matrix(0, 0);
+  const Eigen::Vector3d on_plane = p + normal * (rhs[0] / std::max(used, 1.0));
+  const double spread = normal_matrix(3, 0) + normal_matrix(5, 0);  // Σ |t|²
+  if (!(spread > 0.0)) {
+    return on_plane;
+  }
+  // In units of the tangent spread, so the pivot test does not depend on the units.
+  const double unit = 1.0 / std::sqrt(spread / used);
+  Vector6 scale;
+  scale << 1.0, unit, unit, unit * unit, unit * unit, unit * unit;
+  const Matrix6 scaled = scale.asDiagonal() *
+                         Matrix6(normal_matrix.selfadjointView<Eigen::Lower>()) *
+                         scale.asDiagonal();
+  const Eigen::LDLT<Matrix6> ldlt(scaled);
+  const Vector6 pivots = ldlt.vectorD().cwiseAbs();
+  if (ldlt.info() != Eigen::Success ||
+      !(pivots.minCoeff() > kQuadricPivotRatio * pivots.maxCoeff())) {
+    return on_plane;
+  }
+  const double height = ldlt.solve(scale.asDiagonal() * rhs)[0];  // constant term: unscaled
+  return std::isfinite(height) ? Eigen::Vector3d(p + normal * height) : on_plane;
+}
+
 struct CurvatureFit {
   bool usable = false;
   double mean = 0.0;
 };
-
-// Neighbours whose normal turned by more than this are on the other side of a thin wall.
-constexpr double kOppositeSide = -0.5;
 
 // The shape operator S (symmetric 2×2 in the tangent plane) fitted by least squares to the
 // normal changes towards the neighbours, n_j − n_i ≈ S·(p_j − p_i) in tangent coordinates;
@@ -527,6 +582,20 @@ std::size_t fitAllPoints(const Points& points, const Neighbourhoods& hoods, Curv
 }  // namespace
 
 namespace internal {
+
+Points ontoLocalQuadrics(const Points& points,
+                         const Points& normals,
+                         const NeighbourTable& table,
+                         int k) {
+  Points moved(points.size());
+  const auto count = static_cast<std::ptrdiff_t>(points.size());
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
+    const auto point = static_cast<std::size_t>(i);
+    moved[point] = ontoQuadric(points, normals, table.of(point), k, point);
+  }
+  return moved;
+}
 
 CurvatureResult computeCloudCurvature(const Points& points,
                                       const Points& normals,

@@ -468,19 +468,18 @@ bool DescriptorResult::fitGrew(const DescriptorConfig& config) const {
   return cloud_neighbours > config.cloud_curvature.neighbours && !curvature.on_plane.empty();
 }
 
-Points DescriptorResult::onFittedPlanes(const Points& points) const {
-  const Points& on_plane = curvature.on_plane;
-  if (on_plane.empty() || representative.empty()) {
-    return on_plane.size() == points.size() ? on_plane : Points();
+Points DescriptorResult::onFittedSurfaces(const Points& points) const {
+  if (on_quadric.empty() || representative.empty()) {
+    return on_quadric.size() == points.size() ? on_quadric : Points();
   }
   Points moved(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto r = static_cast<std::size_t>(representative[i]);
     if (analysed[r] == static_cast<int>(i)) {
-      moved[i] = on_plane[r];
-    } else {  // the plane through on_plane[r] with r's normal
+      moved[i] = on_quadric[r];
+    } else {  // the plane through on_quadric[r] with r's normal
       const Eigen::Vector3d& n = curvature.normals[r];
-      moved[i] = points[i] - n * n.dot(points[i] - on_plane[r]);
+      moved[i] = points[i] - n * n.dot(points[i] - on_quadric[r]);
     }
   }
   return moved;
@@ -539,9 +538,14 @@ DescriptorResult computeDescriptors(const Points& points,
           ? internal::cloudEdges(
                 surface, result.curvature.normals, table, config.cloud_edge_neighbours, edge_length)
           : meshEdges(faces);
-  const Points cell_points = faces.empty() && result.fitGrew(config)
-                                 ? pointsOnPlanes(surface, result.curvature.on_plane, noise_sigma)
-                                 : Points();
+  // A noisy cloud (meshes never are: their fit does not grow): cells from the planes, ICP's
+  // points from the quadrics (registration.md, "Onto the neighbourhood quadrics").
+  Points cell_points;
+  if (result.fitGrew(config)) {
+    cell_points = pointsOnPlanes(surface, result.curvature.on_plane, noise_sigma);
+    result.on_quadric = internal::ontoLocalQuadrics(
+        surface, result.curvature.normals, table, result.cloud_neighbours);
+  }
   const SurfaceSamples samples{&surface,
                                &result.curvature.normals,
                                &result.curvature.area,

@@ -489,9 +489,11 @@ TEST(Descriptor, DenseNoisyCloudIsAnalysedOnTheShareItsFitNeeds) {
     EXPECT_LT(with_share.median, with_all.median) << "scale " << k + 1;
     EXPECT_LT(with_share.median, with_30k.median + 0.002) << "scale " << k + 1;
   }
-  // ICP on the planes takes every point, each moved onto the plane of the analysed point it
-  // joined: nearer the sphere than the measured points, and the analysed ones exactly on_plane.
-  const Points moved = shared.onFittedPlanes(dense);
+  // ICP takes every point, each moved onto the surface fitted around the analysed point it
+  // joined: nearer the sphere than the measured points (measured: 0.80 σ → 0.17 σ on average;
+  // 0.28 σ when they went onto the neighbourhood planes, which cut the bend), and the analysed
+  // ones exactly on_quadric.
+  const Points moved = shared.onFittedSurfaces(dense);
   ASSERT_EQ(moved.size(), dense.size());
   double measured_off = 0.0;
   double moved_off = 0.0;
@@ -499,12 +501,12 @@ TEST(Descriptor, DenseNoisyCloudIsAnalysedOnTheShareItsFitNeeds) {
     measured_off += std::abs(dense[i].norm() - kRadius);
     moved_off += std::abs(moved[i].norm() - kRadius);
   }
-  std::printf("mean distance to the sphere: %.3f σ measured, %.3f σ on the planes\n",
+  std::printf("mean distance to the sphere: %.3f σ measured, %.3f σ on the fitted surfaces\n",
               measured_off / double(surface_points) / sigma,
               moved_off / double(surface_points) / sigma);
-  EXPECT_LT(moved_off, 0.5 * measured_off);
+  EXPECT_LT(moved_off, 0.3 * measured_off);
   for (std::size_t j = 0; j < shared.analysed.size(); ++j) {
-    ASSERT_EQ(moved[static_cast<std::size_t>(shared.analysed[j])], shared.curvature.on_plane[j]);
+    ASSERT_EQ(moved[static_cast<std::size_t>(shared.analysed[j])], shared.on_quadric[j]);
   }
   std::vector<int> members(shared.graph.size(), 0);
   for (std::size_t i = 0; i < surface_points; ++i) {
