@@ -232,6 +232,68 @@ TEST(CloudCurvature, PointsOnTheirNeighbourhoodQuadricKeepTheBendThePlaneCuts) {
   EXPECT_LT(quadric_spread, 0.4 * measured_spread) << seedText(kSeed);
 }
 
+// A wall thinner than the neighbourhood: each side's points have the other side's among their
+// neighbours, with normals turned the other way. Those are left out of the quadric, so a side
+// stays where it is instead of being drawn to the mid-plane (which the six coefficients cannot
+// tell from a bend). And neighbours along one line cannot fix a quadric: the point goes onto
+// the plane through their mean, with no NaN.
+TEST(CloudCurvature, QuadricsKeepEachSideOfAThinWallAndFallBackOnALine) {
+  constexpr int kNeighbours = 60;
+  const double side = 0.1;
+  const double wall = 0.002;  // 2 mm: the 60 neighbours reach ~5.5 mm on 4,000 points a side
+  analytic::Cloud top = analytic::samplePlane(side, 4000, kSeed);
+  const analytic::Cloud bottom = analytic::samplePlane(side, 4000, kSeed + 1);
+  Points points;
+  Points normals;
+  for (const auto& p : top.points) {
+    points.push_back(p + Eigen::Vector3d(0.0, 0.0, 0.5 * wall));
+    normals.push_back(Eigen::Vector3d::UnitZ());
+  }
+  for (const auto& p : bottom.points) {
+    points.push_back(p - Eigen::Vector3d(0.0, 0.0, 0.5 * wall));
+    normals.push_back(-Eigen::Vector3d::UnitZ());
+  }
+  internal::NeighbourTable table;
+  CloudCurvatureConfig config;
+  config.neighbours = kNeighbours;
+  const CurvatureResult result =
+      internal::computeCloudCurvature(points, normals, config, kNeighbours, &table);
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
+  std::size_t mixed = 0;  // neighbourhoods that hold both sides
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int* row = table.of(i);
+    mixed += std::any_of(row,
+                         row + kNeighbours,
+                         [&](int j) { return points[std::size_t(j)].z() * points[i].z() < 0.0; })
+                 ? 1
+                 : 0;
+  }
+  const Points moved = internal::ontoLocalQuadrics(points, result.normals, table, kNeighbours);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    worst = std::max(worst, std::abs(moved[i].z() - points[i].z()));
+  }
+  std::printf("%zu of %zu neighbourhoods hold both sides; largest move %.2e m (wall %.0e m)\n",
+              mixed,
+              points.size(),
+              worst,
+              wall);
+  EXPECT_GT(mixed, points.size() / 2);  // the case is the one described
+  EXPECT_LT(worst, 1e-9);               // each side stays on its plane
+
+  Points line;
+  for (int i = 0; i < 100; ++i) {
+    line.emplace_back(0.001 * i, 0.0, 0.0);
+  }
+  internal::NeighbourTable line_table = internal::nearestNeighbourTable(line, 12);
+  const Points line_normals(line.size(), Eigen::Vector3d::UnitZ());
+  const Points on_line = internal::ontoLocalQuadrics(line, line_normals, line_table, 12);
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    ASSERT_TRUE(on_line[i].allFinite()) << "point " << i;
+    EXPECT_LT((on_line[i] - line[i]).norm(), 1e-12) << "point " << i;
+  }
+}
+
 TEST(CloudCurvature, SaddleHasZeroMeanCurvatureAtTheOriginAndMatchesEverywhere) {
   const double scale = 0.1;  // principal curvatures ±10 /m at the origin
   analytic::Cloud saddle = analytic::sampleSaddle(scale, 0.1, 10000, kSeed);
