@@ -94,6 +94,10 @@ struct DescriptorResult {
   /// fitted around its analysed point: `on_quadric` for the analysed points, the plane through
   /// it with that point's normal for the points that joined them. Empty unless on_quadric is set.
   Points onFittedSurfaces(const Points& points) const;
+
+  /// The normal of each of the `count` points the descriptors were computed from: its analysed
+  /// point's (curvature.normals). Empty when the curvature has no normals for them.
+  Points pointNormals(std::size_t count) const;
 };
 
 /// @brief Computes V_k for every point of a mesh (faces non-empty) or a cloud (faces empty).

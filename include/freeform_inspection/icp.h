@@ -33,6 +33,11 @@ struct IcpConfig {
   double min_cutoff_ratio = 1e-5;  ///< cut-off never below this × L (numerical floor)
   double max_cutoff_ratio = 0.05;  ///< nor above this × L (the inlier ceiling for fitness)
   std::size_t max_points = 20000;  ///< points used per iteration (evenly spread subset)
+  /// Points with outward normals pair only with CAD faces turned less than this from them
+  /// [deg]: a noisy point on a wall thinner than its noise is often nearer the wall's far side,
+  /// and pairs made there pull the pose into the wall. 180 pairs every point with the nearest
+  /// face whatever its normal.
+  double facing_tolerance_deg = 80.0;
 };
 
 /// @brief One message per invalid field; empty when valid.
@@ -56,19 +61,52 @@ struct IcpResult {
 /// @brief The fit of `scan_points` at `pose` without moving it: robust σ of the residuals to the
 /// closest CAD points (up to max_cutoff_ratio · L away), the inlier distance (3σ, bounded), the
 /// inliers' RMS and their share of the points used (at most max_points, evenly spread).
+/// @param scan_normals outward unit normals of the points (scan frame), or empty: given, each
+/// point's closest CAD point is sought among the faces that face its way
+/// (IcpConfig::facing_tolerance_deg), as in refinePose().
 IcpResult measureFit(const MeshQuery& cad,
                      const Points& scan_points,
                      const Eigen::Isometry3d& pose,
                      double cad_diagonal,
-                     const IcpConfig& config);
+                     const IcpConfig& config,
+                     const Points& scan_normals = Points());
+
+/// A rigid motion that a fit constrains little: the points slide along the surface instead of
+/// leaving it (a prismatic part along its axis, a tube turned about it).
+struct WeakMotion {
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();     ///< [rad per metre of motion]
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< [m per metre of motion]
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();       ///< [m] of the turn, CAD frame
+  /// Mean squared displacement of the points along their surface normal per unit of motion: 1
+  /// for a motion straight off a plane, 0 for one that no point's surface resists.
+  double stiffness = 0.0;
+
+  /// @brief The motion taken `distance` far [m]: the points move about that much (RMS).
+  Eigen::Isometry3d by(double distance) const;
+};
+
+/// @brief The `count` least constrained motions of `points` at `pose`: eigenvectors of the
+/// point-to-plane normal matrix (the matrix ICP's step solves with), over the points within
+/// `max_distance` of the CAD, turns scaled by the points' RMS distance from their centroid so
+/// that a turn and a shift that move the points equally far compare. Weakest first; empty when
+/// fewer than six points reach the CAD.
+std::vector<WeakMotion> weakestMotions(const MeshQuery& cad,
+                                       const Points& points,
+                                       const Eigen::Isometry3d& pose,
+                                       double max_distance,
+                                       int count);
 
 /// @brief Refines `initial` by ICP.
 /// @param initial_cutoff [m] cut-off of the first iteration (the global stage's accuracy)
+/// @param scan_normals outward unit normals of the points (scan frame, one per point), or
+/// empty: given, a point pairs only with CAD faces that face its way
+/// (IcpConfig::facing_tolerance_deg).
 IcpResult refinePose(const MeshQuery& cad,
                      const Points& scan_points,
                      const Eigen::Isometry3d& initial,
                      double initial_cutoff,
                      double cad_diagonal,
-                     const IcpConfig& config);
+                     const IcpConfig& config,
+                     const Points& scan_normals = Points());
 
 }  // namespace freeform_inspection

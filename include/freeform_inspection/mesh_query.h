@@ -76,6 +76,15 @@ class MeshQuery {
                                     double max_distance,
                                     const std::vector<int>& hints) const;
 
+  /// @brief closestFacing() for many points (`normals[i]` for `queries[i]`; a zero normal
+  /// accepts every face), each search starting from `hints[i]` when it is a face (−1: none).
+  std::vector<ClosestPoint> closestFacing(const Points& queries,
+                                          const Points& normals,
+                                          double min_cos,
+                                          bool oriented,
+                                          double max_distance,
+                                          const std::vector<int>& hints) const;
+
   /// @brief First hit of the ray origin + t·direction for t in (t_min, t_max].
   /// @param direction need not be unit; t is measured in metres along its unit vector.
   RayHit castRay(const Eigen::Vector3d& origin,

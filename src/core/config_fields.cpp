@@ -56,6 +56,7 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"icp/min_cutoff_ratio", &config.icp.min_cutoff_ratio},
       {"icp/max_cutoff_ratio", &config.icp.max_cutoff_ratio},
       {"icp/max_points", &config.icp.max_points},
+      {"icp/facing_tolerance_deg", &config.icp.facing_tolerance_deg},
       {"tolerance/upper", &config.tolerance.upper},
       {"tolerance/lower", &config.tolerance.lower},
       {"deviation/max_distance_ratio", &config.deviation.max_distance_ratio},

@@ -485,6 +485,23 @@ Points DescriptorResult::onFittedSurfaces(const Points& points) const {
   return moved;
 }
 
+Points DescriptorResult::pointNormals(std::size_t count) const {
+  if (representative.empty()) {
+    return curvature.normals.size() == count ? curvature.normals : Points();
+  }
+  if (representative.size() != count) {
+    return Points();
+  }
+  Points normals(count, Eigen::Vector3d::Zero());
+  for (std::size_t i = 0; i < count; ++i) {
+    const int r = representative[i];
+    if (r >= 0 && static_cast<std::size_t>(r) < curvature.normals.size()) {
+      normals[i] = curvature.normals[static_cast<std::size_t>(r)];
+    }
+  }
+  return normals;
+}
+
 DescriptorResult computeDescriptors(const Points& points,
                                     const Triangles& faces,
                                     const Points& normals,

@@ -7,6 +7,7 @@
 
 #include "median_internal.h"
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 namespace freeform_inspection {
@@ -31,20 +32,48 @@ struct Pairs {
   std::vector<double> residual;         // signed (plane) or unsigned (point) distance
 };
 
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+// The scan points ICP works on (an evenly spread subset), with their normals when given.
+struct ScanSample {
+  Points points;
+  Points normals;  // empty, or one per point (scan frame)
+};
+
+ScanSample evenSample(const Points& points, const Points& normals, std::size_t count) {
+  ScanSample sample{evenSubset(points, count), Points()};
+  if (normals.size() == points.size()) {
+    sample.normals = evenSubset(normals, count);
+  }
+  return sample;
+}
+
 // `faces`: each point's face of the previous iteration (−1: none), where its search starts;
-// updated to this iteration's.
+// updated to this iteration's. With normals, each point's closest face among those facing its way.
 Pairs match(const MeshQuery& cad,
-            const Points& points,
+            const ScanSample& sample,
             const Eigen::Isometry3d& T,
             double cutoff,
-            bool point_to_plane,
+            const IcpConfig& config,
             std::vector<int>* faces) {
+  const Points& points = sample.points;
   Points moved(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     moved[i] = T * points[i];
   }
   faces->resize(points.size(), -1);
-  const std::vector<ClosestPoint> closest = cad.closest(moved, cutoff, *faces);
+  std::vector<ClosestPoint> closest;
+  if (sample.normals.empty() || !(config.facing_tolerance_deg < 180.0)) {
+    closest = cad.closest(moved, cutoff, *faces);
+  } else {
+    Points turned(sample.normals.size());
+    for (std::size_t i = 0; i < turned.size(); ++i) {
+      turned[i] = T.linear() * sample.normals[i];
+    }
+    closest = cad.closestFacing(
+        moved, turned, std::cos(config.facing_tolerance_deg * kDegree), true, cutoff, *faces);
+  }
+  const bool point_to_plane = config.point_to_plane;
   Pairs pairs;
   for (std::size_t i = 0; i < moved.size(); ++i) {
     (*faces)[i] = closest[i].face;
@@ -116,6 +145,9 @@ std::vector<std::string> validate(const IcpConfig& config) {
   if (config.max_points < 6) {
     errors.push_back("icp.max_points must be at least 6");
   }
+  if (!(config.facing_tolerance_deg > 0.0 && config.facing_tolerance_deg <= 180.0)) {
+    errors.push_back("icp.facing_tolerance_deg must be in (0, 180]");
+  }
   return errors;
 }
 
@@ -123,7 +155,7 @@ namespace {
 
 // measureFit() on points already thinned to max_points, the search starting from `faces`.
 IcpResult fitOf(const MeshQuery& cad,
-                const Points& points,
+                const ScanSample& sample,
                 const Eigen::Isometry3d& pose,
                 double cad_diagonal,
                 const IcpConfig& config,
@@ -134,7 +166,7 @@ IcpResult fitOf(const MeshQuery& cad,
   const double floor = config.min_cutoff_ratio * cad_diagonal;
   const double ceiling = config.max_cutoff_ratio * cad_diagonal;
   // Inliers within 3σ (bounded), their RMS.
-  const Pairs pairs = match(cad, points, pose, ceiling, config.point_to_plane, faces);
+  const Pairs pairs = match(cad, sample, pose, ceiling, config, faces);
   std::vector<double> magnitude(pairs.residual.size());
   std::transform(pairs.residual.begin(), pairs.residual.end(), magnitude.begin(), [](double r) {
     return std::abs(r);
@@ -150,8 +182,9 @@ IcpResult fitOf(const MeshQuery& cad,
     }
   }
   result.rmse = inliers > 0 ? std::sqrt(sum / static_cast<double>(inliers)) : 0.0;
-  result.fitness =
-      points.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(points.size());
+  result.fitness = sample.points.empty()
+                       ? 0.0
+                       : static_cast<double>(inliers) / static_cast<double>(sample.points.size());
   return result;
 }
 
@@ -161,9 +194,15 @@ IcpResult measureFit(const MeshQuery& cad,
                      const Points& scan_points,
                      const Eigen::Isometry3d& pose,
                      double cad_diagonal,
-                     const IcpConfig& config) {
+                     const IcpConfig& config,
+                     const Points& scan_normals) {
   std::vector<int> faces;
-  return fitOf(cad, evenSubset(scan_points, config.max_points), pose, cad_diagonal, config, &faces);
+  return fitOf(cad,
+               evenSample(scan_points, scan_normals, config.max_points),
+               pose,
+               cad_diagonal,
+               config,
+               &faces);
 }
 
 IcpResult refinePose(const MeshQuery& cad,
@@ -171,10 +210,12 @@ IcpResult refinePose(const MeshQuery& cad,
                      const Eigen::Isometry3d& initial,
                      double initial_cutoff,
                      double cad_diagonal,
-                     const IcpConfig& config) {
+                     const IcpConfig& config,
+                     const Points& scan_normals) {
   IcpResult result;
   result.T_cad_scan = initial;
-  const Points points = evenSubset(scan_points, config.max_points);
+  const ScanSample sample = evenSample(scan_points, scan_normals, config.max_points);
+  const Points& points = sample.points;
   const double floor = config.min_cutoff_ratio * cad_diagonal;
   const double ceiling = config.max_cutoff_ratio * cad_diagonal;
   double cutoff = std::clamp(initial_cutoff, floor, ceiling);
@@ -190,8 +231,7 @@ IcpResult refinePose(const MeshQuery& cad,
   }
   std::vector<int> faces;  // each point's closest face, where the next search starts
   for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
-    const Pairs pairs =
-        match(cad, points, result.T_cad_scan, cutoff, config.point_to_plane, &faces);
+    const Pairs pairs = match(cad, sample, result.T_cad_scan, cutoff, config, &faces);
     if (pairs.source.size() < 6) {
       result.status =
           Status::failure(StatusCode::kRegistrationFailed,
@@ -235,7 +275,7 @@ IcpResult refinePose(const MeshQuery& cad,
     }
     previous_mse = mse;
   }
-  const IcpResult fit = fitOf(cad, points, result.T_cad_scan, cad_diagonal, config, &faces);
+  const IcpResult fit = fitOf(cad, sample, result.T_cad_scan, cad_diagonal, config, &faces);
   result.sigma = fit.sigma;
   result.inlier_distance = fit.inlier_distance;
   result.rmse = fit.rmse;
@@ -246,6 +286,68 @@ IcpResult refinePose(const MeshQuery& cad,
         "ICP did not converge in " + std::to_string(config.max_iterations) + " iterations");
   }
   return result;
+}
+
+Eigen::Isometry3d WeakMotion::by(double distance) const {
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  const Eigen::Vector3d turn = distance * rotation;
+  if (turn.norm() > 0.0 && turn.allFinite()) {
+    motion.linear() = Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix();
+  }
+  motion.translation() = centre - motion.linear() * centre + distance * translation;
+  return motion;
+}
+
+std::vector<WeakMotion> weakestMotions(const MeshQuery& cad,
+                                       const Points& points,
+                                       const Eigen::Isometry3d& pose,
+                                       double max_distance,
+                                       int count) {
+  Points moved;
+  Points normals;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d q = pose * p;
+    const ClosestPoint closest = cad.closest(q, max_distance);
+    if (closest.found) {
+      moved.push_back(q);
+      normals.push_back(closest.normal);
+    }
+  }
+  std::vector<WeakMotion> motions;
+  if (moved.size() < 6 || count < 1) {
+    return motions;
+  }
+  const auto n = static_cast<double>(moved.size());
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& q : moved) {
+    centre += q / n;
+  }
+  double spread = 0.0;
+  for (const Eigen::Vector3d& q : moved) {
+    spread += (q - centre).squaredNorm() / n;
+  }
+  const double radius = std::sqrt(spread);
+  if (!(radius > 0.0)) {
+    return motions;
+  }
+  // The same Jacobian as pointToPlaneStep(), its turn part in metres of motion at the radius.
+  Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    Eigen::Matrix<double, 6, 1> J;
+    J << (moved[i] - centre).cross(normals[i]) / radius, normals[i];
+    A += J * J.transpose() / n;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(A);
+  for (int k = 0; k < std::min(count, 6); ++k) {
+    const Eigen::Matrix<double, 6, 1> v = solver.eigenvectors().col(k);
+    WeakMotion motion;
+    motion.rotation = v.head<3>() / radius;
+    motion.translation = v.tail<3>();
+    motion.centre = centre;
+    motion.stiffness = std::max(solver.eigenvalues()[k], 0.0);
+    motions.push_back(motion);
+  }
+  return motions;
 }
 
 }  // namespace freeform_inspection

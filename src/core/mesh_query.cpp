@@ -525,11 +525,14 @@ ClosestPoint MeshQuery::closest(const Eigen::Vector3d& query, double max_distanc
   return closestOnMesh(*impl_, query, state);
 }
 
-ClosestPoint MeshQuery::closestFacing(const Eigen::Vector3d& query,
-                                      const Eigen::Vector3d& normal,
-                                      double min_cos,
-                                      bool oriented,
-                                      double max_distance) const {
+namespace {
+
+// The search state of closestFacing(): faces turned like `normal` only (every face for a zero
+// or non-finite normal).
+PointQueryState facingState(const Eigen::Vector3d& normal,
+                            double min_cos,
+                            bool oriented,
+                            double max_distance) {
   PointQueryState state;
   state.max_distance = max_distance;
   if (normal.allFinite() && normal.norm() > 0.0) {
@@ -537,7 +540,36 @@ ClosestPoint MeshQuery::closestFacing(const Eigen::Vector3d& query,
     state.min_cos = min_cos;
     state.oriented = oriented;
   }
+  return state;
+}
+
+}  // namespace
+
+ClosestPoint MeshQuery::closestFacing(const Eigen::Vector3d& query,
+                                      const Eigen::Vector3d& normal,
+                                      double min_cos,
+                                      bool oriented,
+                                      double max_distance) const {
+  PointQueryState state = facingState(normal, min_cos, oriented, max_distance);
   return closestOnMesh(*impl_, query, state);
+}
+
+std::vector<ClosestPoint> MeshQuery::closestFacing(const Points& queries,
+                                                   const Points& normals,
+                                                   double min_cos,
+                                                   bool oriented,
+                                                   double max_distance,
+                                                   const std::vector<int>& hints) const {
+  std::vector<ClosestPoint> results(queries.size());
+  const auto count = static_cast<long long>(queries.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (long long i = 0; i < count; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    PointQueryState state = facingState(
+        u < normals.size() ? normals[u] : Eigen::Vector3d::Zero(), min_cos, oriented, max_distance);
+    results[u] = closestOnMesh(*impl_, queries[u], state, u < hints.size() ? hints[u] : -1);
+  }
+  return results;
 }
 
 std::vector<ClosestPoint> MeshQuery::closest(const Points& queries, double max_distance) const {
@@ -547,16 +579,8 @@ std::vector<ClosestPoint> MeshQuery::closest(const Points& queries, double max_d
 std::vector<ClosestPoint> MeshQuery::closest(const Points& queries,
                                              double max_distance,
                                              const std::vector<int>& hints) const {
-  std::vector<ClosestPoint> results(queries.size());
-  const auto count = static_cast<long long>(queries.size());
-#pragma omp parallel for schedule(dynamic, 256)
-  for (long long i = 0; i < count; ++i) {
-    const auto u = static_cast<std::size_t>(i);
-    PointQueryState state;
-    state.max_distance = max_distance;
-    results[u] = closestOnMesh(*impl_, queries[u], state, u < hints.size() ? hints[u] : -1);
-  }
-  return results;
+  // No normals: every face counts, the plain closest point.
+  return closestFacing(queries, Points(), -1.0, true, max_distance, hints);
 }
 
 RayHit MeshQuery::castRay(const Eigen::Vector3d& origin,

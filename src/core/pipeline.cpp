@@ -65,10 +65,18 @@ struct Stopwatch {
   }
 };
 
-// Below this share of the scan's surface on the CAD, the principal-frame turns of the pose are
-// tried (registerScan). Right poses of camera views at 0.5 % noise put 0.91-1.0 there, so most
-// scans skip the 23 extra refinements; a turn only wins where the scan sides with it.
+// A pose that leaves more than this share of the scan's surface off the CAD is retried from
+// other starts (registerScan, retryStarts): a right pose of a clean scan explains all of it
+// but for its noise tails (0.99-1.0 for the scans of the registration table).
+constexpr double kProbeBelowSurface = 0.99;
+// Below this share the cube's turns are tried as well. Right poses of camera views at 0.5 %
+// noise put 0.91-1.0 there, so most scans skip those 46 refinements; a turn only wins where
+// the scan sides with it.
 constexpr double kRetryBelowSurface = 0.95;
+// The probes along the fit's weakest motions: this many motions, each taken these many cells
+// either way (a slid prismatic view is found from within a cell or so of where it belongs).
+constexpr int kProbedMotions = 2;
+constexpr double kProbeCells[] = {2.0, 4.0};
 
 // A refined candidate pose and how much of the scan it explains.
 struct RefinedPose {
@@ -151,6 +159,39 @@ RefinedHypotheses refineHypotheses(const Model& model,
   }
   std::stable_sort(out.poses.begin(), out.poses.end(), by_score);
   return out;
+}
+
+// The starts a pose that leaves some of the scan off the CAD is retried from (registerScan).
+// Probes along the two motions the fit constrains least, two and four cells either way: a
+// prismatic view slides along its axis without leaving the surface, so ICP stays where the
+// triplet put it. Below kRetryBelowSurface also the cube's turns about the CAD's principal axes
+// (a bar's view turned about a diagonal of its section) and about the view's own (the view of
+// a bent sheet that shows its bend is symmetric about the bend's bisector, which the part as a
+// whole, with legs of unequal length, is not).
+std::vector<Eigen::Isometry3d> retryStarts(const Model& model,
+                                           const SurfaceGraph& scan,
+                                           const VerificationSet& set,
+                                           const Eigen::Isometry3d& pose,
+                                           double surface_share,
+                                           double truncation) {
+  std::vector<Eigen::Isometry3d> starts;
+  for (const WeakMotion& motion :
+       weakestMotions(model.query(), set.points, pose, truncation, kProbedMotions)) {
+    for (const double cells : kProbeCells) {
+      for (const double sign : {-1.0, 1.0}) {
+        starts.push_back(motion.by(sign * cells * model.cellSize()) * pose);
+      }
+    }
+  }
+  if (surface_share < kRetryBelowSurface) {
+    for (const Eigen::Isometry3d& turn : principalFrameTurns(model.descriptors().graph)) {
+      starts.push_back(turn * pose);
+    }
+    for (const Eigen::Isometry3d& turn : principalFrameTurns(scan)) {
+      starts.push_back(pose * turn);
+    }
+  }
+  return starts;
 }
 
 // Features → candidates → triplets → verification → ICP. Fills the registration fields of
@@ -283,16 +324,21 @@ void registerScan(const Model& model,
   // grew.
   const Points surface_points = scan.onFittedSurfaces(scan_points);
   const bool on_surfaces = !surface_points.empty();
+  // Normals that point out of the material pair each point with a face turned its way: on a
+  // wall thinner than the noise, the nearest face is often the far side (a bent 2 mm sheet at
+  // σ = 1.8 mm: every pose 1 % of L into the sheet, some views turned by 1-2°).
+  const Points point_normals = oriented ? scan.pointNormals(scan_points.size()) : Points();
   const auto refine = [&](const Eigen::Isometry3d& initial) {
     IcpResult refined_pose = refinePose(model.query(),
                                         on_surfaces ? surface_points : scan_points,
                                         initial,
                                         coarse_truncation,
                                         diagonal,
-                                        config.icp);
+                                        config.icp,
+                                        point_normals);
     if (on_surfaces && refined_pose.usable()) {
-      const IcpResult measured =
-          measureFit(model.query(), scan_points, refined_pose.T_cad_scan, diagonal, config.icp);
+      const IcpResult measured = measureFit(
+          model.query(), scan_points, refined_pose.T_cad_scan, diagonal, config.icp, point_normals);
       refined_pose.sigma = measured.sigma;
       refined_pose.inlier_distance = measured.inlier_distance;
       refined_pose.rmse = measured.rmse;
@@ -339,36 +385,45 @@ void registerScan(const Model& model,
                         config.registration.verification_points);
   };
   double surface_share = icp.usable() ? surfaceShare(icp) : 0.0;
-  // A pose that leaves much of the scan's surface off the CAD may be a confusion that neither the
-  // triplets nor the twins reached (a bar's view turned about a diagonal of its section). The
-  // cube's turns about the CAD's principal axes are tried from it; the best one that the scan
-  // clearly sides with (scanPrefers) replaces it.
-  if (icp.usable() && surface_share < kRetryBelowSurface) {
-    std::vector<Eigen::Isometry3d> starts;
-    for (const Eigen::Isometry3d& turn : principalFrameTurns(cad.graph)) {
-      starts.push_back(turn * icp.T_cad_scan);
-    }
-    const std::vector<RefinedPose> turned = refineAll(model, starts, set, config);
+  // A pose that leaves some of the scan's surface off the CAD may be a confusion that neither the
+  // triplets nor the twins reached: a bar's view turned about a diagonal of its section, a bent
+  // sheet's view with its legs swapped, a prismatic view slid along its axis. It is retried from
+  // the starts of retryStarts(). A retried pose the scan clearly sides with (scanPrefers), still
+  // after it is refined as fully as the pose, replaces it; one the scan cannot tell from it
+  // becomes a contender, so that the verification below says ambiguous instead of picking one.
+  if (icp.usable() && surface_share < kProbeBelowSurface) {
+    const std::vector<RefinedPose> retried = refineAll(
+        model,
+        retryStarts(model, scan.graph, set, icp.T_cad_scan, surface_share, coarse_truncation),
+        set,
+        config);
     const std::vector<double> current_terms = termsAt(icp.T_cad_scan);
-    double chosen_score = fineScore(icp.T_cad_scan);
+    const double current_score = fineScore(icp.T_cad_scan);
     const RefinedPose* chosen = nullptr;
-    for (const RefinedPose& pose : turned) {
-      if (!separatePoses(icp.T_cad_scan, pose.T_cad_scan, reference, cell)) {
-        continue;
-      }
+    double chosen_score = 0.0;
+    for (const RefinedPose& pose : retried) {
       const double score = fineScore(pose.T_cad_scan);
-      if (score > chosen_score && scanPrefers(termsAt(pose.T_cad_scan), current_terms)) {
-        chosen_score = score;
-        chosen = &pose;
+      if (scanPrefers(termsAt(pose.T_cad_scan), current_terms)) {
+        if (chosen == nullptr || score > chosen_score) {
+          chosen = &pose;
+          chosen_score = score;
+        }
+      } else if (score >= config.registration.ambiguity_ratio * current_score &&
+                 separatePoses(icp.T_cad_scan, pose.T_cad_scan, reference, cell) &&
+                 std::all_of(contenders.begin(), contenders.end(), [&](const RefinedPose& c) {
+                   return separatePoses(c.T_cad_scan, pose.T_cad_scan, reference, cell);
+                 })) {
+        contenders.push_back(pose);
+        fine_scores.push_back(score);
       }
     }
     if (chosen != nullptr) {
       const IcpResult moved = refine(chosen->T_cad_scan);
-      if (moved.usable()) {
+      if (moved.usable() && scanPrefers(termsAt(moved.T_cad_scan), current_terms)) {
         icp = moved;
         surface_share = surfaceShare(icp);
         contenders.push_back(*chosen);
-        fine_scores.push_back(chosen_score);
+        fine_scores.push_back(std::max(chosen_score, fineScore(icp.T_cad_scan)));
         best = contenders.size() - 1;
       }
     }

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <random>
 
+#include "analytic_shapes.h"
+#include "test_shapes.h"
 #include <gtest/gtest.h>
 
 #include "freeform_inspection/io.h"
@@ -221,17 +223,134 @@ TEST(Icp, ScanFarFromTheCadIsALostSurfaceNotAPose) {
   EXPECT_NE(result.status.message.find("lost the surface"), std::string::npos);
 }
 
+// How far `points` moved by `motion` end up from the surface of `cad`, at most.
+double farthestOffSurface(const MeshQuery& cad,
+                          const Points& points,
+                          const Eigen::Isometry3d& motion) {
+  double farthest = 0.0;
+  for (const auto& p : points) {
+    farthest = std::max(farthest, cad.closest(motion * p).distance);
+  }
+  return farthest;
+}
+
+// A tube's points slide along its axis and turn about it without leaving the surface: the two
+// motions a fit cannot see (zero stiffness but for the facets), which a view of a prismatic part
+// slides along. Every other motion takes the points off it.
+TEST(Icp, WeakestMotionsOfATubeAreAlongAndAboutItsAxis) {
+  const TriangleMesh tube = test::cylinderTube(0.05, 0.3, 96, 40);
+  const MeshQuery cad(tube);
+  const Points points = sampleSurface(tube, 3000, kSeed).points;
+  const std::vector<WeakMotion> motions =
+      weakestMotions(cad, points, Eigen::Isometry3d::Identity(), 0.01, 6);
+  ASSERT_EQ(motions.size(), 6u);
+  for (std::size_t k = 0; k + 1 < motions.size(); ++k) {
+    EXPECT_LE(motions[k].stiffness, motions[k + 1].stiffness);
+  }
+  // The facets leave a stiffness of (facet width / √12 / radius)² ≈ 1e-4 to the turn.
+  EXPECT_LT(motions[0].stiffness, 1e-3);
+  EXPECT_LT(motions[1].stiffness, 1e-3);
+  EXPECT_GT(motions[2].stiffness, 0.05);
+  // One slides along z, the other turns about it (through the points' centroid, which the
+  // random sample puts a millimetre off the axis, so with a small shift).
+  const Eigen::Vector3d z(0.0, 0.0, 1.0);
+  const bool slide_first = motions[0].rotation.norm() < motions[1].rotation.norm();
+  const WeakMotion& slide = motions[slide_first ? 0 : 1];
+  const WeakMotion& turn = motions[slide_first ? 1 : 0];
+  EXPECT_GT(std::abs(slide.translation.normalized().dot(z)), 0.999);
+  EXPECT_LT(slide.rotation.norm(), 1e-3);
+  EXPECT_GT(std::abs(turn.rotation.normalized().dot(z)), 0.999);
+  // 1 cm of either keeps the points of the tube's middle (away from its open ends) within
+  // 0.1 mm (the facets' sagitta) of it; 1 cm of the next motion takes some millimetres off.
+  Points middle;
+  for (const auto& p : points) {
+    if (std::abs(p.z()) < 0.1) {
+      middle.push_back(p);
+    }
+  }
+  EXPECT_LT(farthestOffSurface(cad, middle, slide.by(0.01)), 1e-4);
+  EXPECT_LT(farthestOffSurface(cad, middle, turn.by(0.01)), 1e-4);
+  EXPECT_GT(farthestOffSurface(cad, middle, motions[2].by(0.01)), 2e-3);
+}
+
+TEST(Icp, EveryMotionOfABoxIsStiff) {
+  const TriangleMesh box = test::makeBox(Eigen::Vector3d(0.05, 0.03, 0.02));
+  const MeshQuery cad(box);
+  const Points points = sampleSurface(box, 3000, kSeed).points;
+  const std::vector<WeakMotion> motions =
+      weakestMotions(cad, points, Eigen::Isometry3d::Identity(), 0.01, 2);
+  ASSERT_EQ(motions.size(), 2u);
+  EXPECT_GT(motions[0].stiffness, 0.02);
+  // Too few points near the CAD: no motions to tell.
+  EXPECT_TRUE(
+      weakestMotions(cad, {Eigen::Vector3d(1.0, 1.0, 1.0)}, Eigen::Isometry3d::Identity(), 0.01, 2)
+          .empty());
+}
+
+// A noisy view of a 2 mm sheet (σ = 1.2 mm along the normals, the bent bracket of test/data):
+// a point pushed more than 1 mm into the sheet is nearer its far side, and pairs made there pull
+// the pose into the sheet. Paired only with the faces turned its way, the fit stays where the
+// surface is.
+TEST(Icp, PairsWithTheFacesTurnedTheirWayOnAWallThinnerThanTheNoise) {
+  const TriangleMesh sheet =
+      loadMesh(std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/bent_sheet_bracket.stl", 1.0).mesh;
+  const MeshQuery cad(sheet);
+  ASSERT_TRUE(cad.status().ok());
+  const double sigma = 0.0012;
+  const SurfaceSample all = sampleSurface(sheet, 40000, kSeed, sigma);
+  // The outer side of both legs and the bend (outward normals +z on the long leg, −x on the
+  // short one): what a sensor on the outside sees.
+  const Eigen::Vector3d outside = Eigen::Vector3d(-1.0, 0.0, 1.0).normalized();
+  Points points;
+  Points normals;
+  for (std::size_t i = 0; i < all.points.size(); ++i) {
+    if (all.normals[i].dot(outside) > 0.5) {
+      points.push_back(all.points[i]);
+      normals.push_back(all.normals[i]);
+    }
+  }
+  ASSERT_GT(points.size(), 10000u);
+  const double diagonal = diagonalOf(sheet);
+  const Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  const IcpResult nearest = refinePose(cad, points, truth, 3 * sigma, diagonal, IcpConfig());
+  const IcpResult facing =
+      refinePose(cad, points, truth, 3 * sigma, diagonal, IcpConfig(), normals);
+  ASSERT_TRUE(nearest.usable() && facing.usable());
+  // Off the sheet: the shift in the plane of its profile (x, z). Along its width (y) only the
+  // bead holds the view, and there the noise of 10,000 points leaves a few tenths of a millimetre.
+  const auto across = [](const IcpResult& fit) {
+    return Eigen::Vector2d(fit.T_cad_scan.translation().x(), fit.T_cad_scan.translation().z())
+        .norm();
+  };
+  std::printf("shift off the sheet: nearest face %.3f mm, facing face %.3f mm\n",
+              1e3 * across(nearest),
+              1e3 * across(facing));
+  EXPECT_GT(across(nearest), 0.2 * sigma);
+  EXPECT_LT(across(facing), 0.1 * sigma);
+  EXPECT_LT(angleDeg(facing.T_cad_scan, truth), 0.05);
+  // The measured noise is the noise itself once no pair crosses the sheet.
+  EXPECT_NEAR(facing.sigma, sigma, 0.05 * sigma);
+  EXPECT_LT(nearest.sigma, 0.9 * sigma);
+  // 180° compares nothing: the nearest face again.
+  IcpConfig off;
+  off.facing_tolerance_deg = 180.0;
+  const IcpResult unfiltered = refinePose(cad, points, truth, 3 * sigma, diagonal, off, normals);
+  EXPECT_EQ(unfiltered.T_cad_scan.matrix(), nearest.T_cad_scan.matrix());
+}
+
 TEST(IcpConfig, ValidationNamesTheField) {
   IcpConfig config;
   EXPECT_TRUE(validate(config).empty());
   config.max_iterations = 0;
   config.min_cutoff_ratio = 1.0;
   config.still_fraction = -0.1;
+  config.facing_tolerance_deg = 0.0;
   const auto errors = validate(config);
-  ASSERT_EQ(errors.size(), 3u);
+  ASSERT_EQ(errors.size(), 4u);
   EXPECT_NE(errors[0].find("icp.max_iterations"), std::string::npos);
   EXPECT_NE(errors[1].find("icp.still_fraction"), std::string::npos);
   EXPECT_NE(errors[2].find("icp.min_cutoff_ratio"), std::string::npos);
+  EXPECT_NE(errors[3].find("icp.facing_tolerance_deg"), std::string::npos);
 }
 
 }  // namespace

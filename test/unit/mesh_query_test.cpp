@@ -337,6 +337,47 @@ TEST(MeshQuery, BatchEqualsSingleQueries) {
   EXPECT_TRUE(query.closest(Points{}).empty());
 }
 
+// The batch closestFacing() is the single query per point, whatever hint its search starts
+// from (a hint facing the wrong way included).
+TEST(MeshQuery, BatchClosestFacingEqualsSingleQueriesWhateverTheHints) {
+  const MeshQuery query(test::torus(1.0, 0.3, 32, 16));
+  ASSERT_TRUE(query.status().ok());
+  const Points queries = randomPoints(2000, 1.6, kSeed);
+  std::mt19937 rng(kSeed + 2);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  Points normals;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    // A tenth of the points without a normal: every face counts for them.
+    normals.push_back(i % 10 == 0 ? Eigen::Vector3d::Zero()
+                                  : Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)));
+  }
+  const auto faces = static_cast<int>(query.mesh().faces.size());
+  std::uniform_int_distribution<int> face(-1, faces - 1);
+  std::vector<int> random_hints;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    random_hints.push_back(face(rng));
+  }
+  const double cos60 = 0.5;
+  for (const bool oriented : {true, false}) {
+    for (const std::vector<int>& hints : {random_hints, std::vector<int>{}}) {
+      const std::vector<ClosestPoint> batch =
+          query.closestFacing(queries, normals, cos60, oriented, 0.4, hints);
+      ASSERT_EQ(batch.size(), queries.size());
+      std::size_t found = 0;
+      for (std::size_t i = 0; i < queries.size(); ++i) {
+        const ClosestPoint single =
+            query.closestFacing(queries[i], normals[i], cos60, oriented, 0.4);
+        ASSERT_EQ(batch[i].found, single.found) << i;
+        EXPECT_EQ(batch[i].face, single.face) << i;
+        EXPECT_EQ(batch[i].point, single.point) << i;
+        EXPECT_EQ(batch[i].distance, single.distance) << i;
+        found += single.found ? 1 : 0;
+      }
+      EXPECT_GT(found, queries.size() / 10);  // the comparison is not between empty answers
+    }
+  }
+}
+
 // A hint only bounds the search: any face, near or far, right or wrong, invalid or none, gives
 // the answer without hints to the last bit (ties included: a point on the torus's axis is at
 // the same distance from a whole ring of faces).

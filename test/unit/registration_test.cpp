@@ -30,6 +30,7 @@ const std::string kBlade = std::string(FREEFORM_DATA_DIR) + "/blade/blade.stl";
 const std::string kLink =
     std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/kuka_kr10r900_2_link_4.stl";
 const std::string kFlange = std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/abb_irb6640_link_6.stl";
+const std::string kSheet = std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/bent_sheet_bracket.stl";
 
 std::shared_ptr<const Model> load(const std::string& path, double scale) {
   const ModelLoadResult loaded = loadModel(path, scale, "test");
@@ -68,6 +69,30 @@ PoseError poseError(const InspectionResult& result, const SyntheticScan& truth, 
   return error;
 }
 
+// RMS distance to the CAD, at `pose`, of the scan's surface points within `within` of it (the
+// generator appends its outliers after them): to the nearest face turned the point's way, as
+// ICP pairs them (on a wall thinner than the noise the nearest face may be its far side).
+double surfaceRms(const Model& model,
+                  const SyntheticScan& truth,
+                  const Eigen::Isometry3d& pose,
+                  double within) {
+  const double cos80 = std::cos(80.0 * M_PI / 180.0);
+  const Points& normals = truth.scan.normals;
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i + truth.outliers < truth.scan.points.size(); ++i) {
+    const Eigen::Vector3d normal =
+        i < normals.size() ? Eigen::Vector3d(pose.linear() * normals[i]) : Eigen::Vector3d::Zero();
+    const ClosestPoint closest =
+        model.query().closestFacing(pose * truth.scan.points[i], normal, cos80, true, within);
+    if (closest.found) {
+      sum += closest.distance * closest.distance;
+      ++count;
+    }
+  }
+  return count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
+}
+
 SyntheticScan makeCase(const Model& model, SyntheticScanConfig config) {
   const SyntheticScan scan = makeSyntheticScan(model.query(), config);
   EXPECT_TRUE(scan.status.ok()) << scan.status.message;
@@ -93,10 +118,16 @@ void expectRegistered(const Model& model, const SyntheticScanConfig& config, boo
   EXPECT_GE(result.counts.features, 3u);
   EXPECT_GE(result.counts.candidates, result.counts.features);
   if (config.noise_ratio > 0.0) {
-    // At the noise floor: the inliers' RMS distance is the noise itself (measured 0.92–0.97 σ;
-    // the 3σ trimming keeps it just under σ), and σ is measured, not assumed.
+    // At the noise floor: the scan's surface points (the outliers left out) lie the noise itself
+    // from the CAD at the found pose; within 3σ a Gaussian's RMS is 0.986 σ. σ is measured, not
+    // assumed.
     const double sigma = config.noise_ratio * model.bounds().diagonal();
-    EXPECT_LE(result.rmse, 1.0 * sigma);
+    const double surface_rms = surfaceRms(model, truth, result.T_cad_scan, 3.0 * sigma);
+    EXPECT_LE(surface_rms, 1.0 * sigma);
+    EXPECT_GT(surface_rms, 0.8 * sigma);
+    // The reported RMS is over every point within the inlier distance, so the outliers that fell
+    // that close to the surface count in it (20 % outliers on the blade: 1.007 σ).
+    EXPECT_LE(result.rmse, (config.outlier_fraction > 0.0 ? 1.05 : 1.0) * sigma);
     EXPECT_GT(result.rmse, 0.8 * sigma);
     EXPECT_NEAR(result.noise_sigma, sigma, 0.15 * sigma);
   }
@@ -181,6 +212,39 @@ TEST(Registration, TwoPercentNoiseFullViews) {
     EXPECT_LE(result.rmse, 1.0 * sigma);
     EXPECT_GT(result.rmse, 0.6 * sigma);
     EXPECT_NEAR(result.scan_noise, sigma, 0.3 * sigma);
+  }
+}
+
+// A stamped bracket (test/data/make_parts.py: a 2 mm sheet bent by 90°, legs of 100 and 70 mm,
+// a bead on the long leg) seen from one side, 30,000 points. Before the retries and the facing
+// pairs (registration.md, "Slid, swapped and thin"), a view at 0.1 % noise (seed 2) came back
+// slid 2 mm along the sheet's width, and views at 1 % (σ = 1.8 mm, about the sheet's thickness)
+// were pulled into the sheet by 1 % of L or had their legs swapped: of these eight, two were
+// wrong poses reported ok (0.1 % seed 2, 1 % seed 3), two failed and one was ambiguous.
+// At 1 % the poses are not at the noise floor (0.04-0.52° and 0.66-0.81 % of L off; the
+// surface points' RMS reads 0.99-1.0 σ), so only the pose is asserted here.
+TEST(Registration, BentSheetPartialViews) {
+  static const auto sheet = load(kSheet, 1.0);
+  const double diagonal = sheet->bounds().diagonal();
+  for (const double noise : {0.001, 0.01}) {
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+      SyntheticScanConfig config = caseConfig(seed, noise, true, 0.0);
+      config.points = 30000;
+      SCOPED_TRACE("seed " + std::to_string(seed) + ", noise " + std::to_string(noise));
+      const SyntheticScan truth = makeCase(*sheet, config);
+      const InspectionResult result = inspect(*sheet, truth.scan, PipelineConfig());
+      ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+      const PoseError error = poseError(result, truth, diagonal);
+      const double sigma = noise * diagonal;
+      std::printf("noise %.3f seed %llu: %.3f deg, %.4f L, surface RMS %.3f σ\n",
+                  noise,
+                  static_cast<unsigned long long>(seed),
+                  error.rotation_deg,
+                  error.centroid_ratio,
+                  surfaceRms(*sheet, truth, result.T_cad_scan, 3.0 * sigma) / sigma);
+      EXPECT_LT(error.rotation_deg, 2.0);
+      EXPECT_LT(error.centroid_ratio, 0.01);
+    }
   }
 }
 
