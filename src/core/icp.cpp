@@ -62,17 +62,14 @@ Pairs match(const MeshQuery& cad,
     moved[i] = T * points[i];
   }
   faces->resize(points.size(), -1);
-  std::vector<ClosestPoint> closest;
-  if (sample.normals.empty() || !(config.facing_tolerance_deg < 180.0)) {
-    closest = cad.closest(moved, cutoff, *faces);
-  } else {
-    Points turned(sample.normals.size());
-    for (std::size_t i = 0; i < turned.size(); ++i) {
-      turned[i] = T.linear() * sample.normals[i];
+  Points turned;  // none: every point's nearest face, whatever its normal
+  if (config.facing_tolerance_deg < 180.0) {
+    for (const Eigen::Vector3d& normal : sample.normals) {
+      turned.push_back(T.linear() * normal);
     }
-    closest = cad.closestFacing(
-        moved, turned, std::cos(config.facing_tolerance_deg * kDegree), true, cutoff, *faces);
   }
+  const std::vector<ClosestPoint> closest = cad.closestFacing(
+      moved, turned, std::cos(config.facing_tolerance_deg * kDegree), true, cutoff, *faces);
   const bool point_to_plane = config.point_to_plane;
   Pairs pairs;
   for (std::size_t i = 0; i < moved.size(); ++i) {
