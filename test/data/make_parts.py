@@ -4,8 +4,9 @@
 """Writes generated test parts (see README.md): shapes of the kinds the package inspects that
 the public meshes lack. Python 3 standard library only, deterministic, metres.
 Usage: python3 make_parts.py          writes meshes/bent_sheet_bracket.stl (the tests use it)
-       python3 make_parts.py DIR      writes it, a lumpy casting and an open freeform panel into
-                                      DIR, for bench/registration_eval (docs/benchmarks.md)
+       python3 make_parts.py DIR      writes it, a hat channel, a lumpy casting and an open
+                                      freeform panel into DIR, for bench/registration_eval
+                                      (docs/benchmarks.md)
 """
 import math
 import os
@@ -68,6 +69,49 @@ def bent_sheet_bracket():
         for j in range(across):
             y = width * j / (across - 1)
             lift = bead(i, y)
+            row_out.append((x + nx * (thickness / 2 + lift), y, z + nz * (thickness / 2 + lift)))
+            row_in.append((x - nx * (thickness / 2 - lift), y, z - nz * (thickness / 2 - lift)))
+        outer.append(row_out)
+        inner.append(row_in)
+    triangles = quads(outer) + quads(inner, flip=True)
+    last = across - 1
+    triangles += quads([[outer[i][0], inner[i][0]] for i in range(len(line))], flip=True)
+    triangles += quads([[outer[i][last], inner[i][last]] for i in range(len(line))])
+    triangles += quads([outer[0], inner[0]], flip=True)
+    triangles += quads([outer[-1], inner[-1]])
+    return triangles
+
+
+def hat_channel():
+    """A stamped hat channel: a 1.5 mm sheet folded into a 40 × 30 mm U with flanges of 30 and
+    15 mm, 150 mm long, a 2 mm dimple on the wide flange. Closed, wound outward. Turned by 180°
+    about its vertical axis it lies on itself but for the flanges' difference."""
+    thickness, length, across = 0.0015, 0.15, 31
+    corners = [(-0.05, 0.0), (-0.02, 0.0), (-0.02, 0.03), (0.02, 0.03), (0.02, 0.0), (0.035, 0.0)]
+    line = []
+    for (x0, z0), (x1, z1) in zip(corners[:-1], corners[1:]):
+        steps = max(2, int(math.hypot(x1 - x0, z1 - z0) / 0.003))
+        line += [(x0 + (x1 - x0) * k / steps, z0 + (z1 - z0) * k / steps) for k in range(steps)]
+    line.append(corners[-1])
+    normals = []
+    for i in range(len(line)):
+        (x0, z0), (x1, z1) = line[max(i - 1, 0)], line[min(i + 1, len(line) - 1)]
+        size = math.hypot(x1 - x0, z1 - z0)
+        normals.append((-(z1 - z0) / size, (x1 - x0) / size))
+
+    def dimple(i, y):
+        x, z = line[i]
+        if abs(z) > 1e-9 or x > -0.02:
+            return 0.0
+        return 0.002 * math.exp(-(x + 0.035) ** 2 / 5e-5 - (y - 0.04) ** 2 / 5e-5)
+
+    outer, inner = [], []
+    for i, (x, z) in enumerate(line):
+        nx, nz = normals[i]
+        row_out, row_in = [], []
+        for j in range(across):
+            y = length * j / (across - 1)
+            lift = dimple(i, y)
             row_out.append((x + nx * (thickness / 2 + lift), y, z + nz * (thickness / 2 + lift)))
             row_in.append((x - nx * (thickness / 2 - lift), y, z - nz * (thickness / 2 - lift)))
         outer.append(row_out)
@@ -144,5 +188,6 @@ if __name__ == '__main__':
     if len(sys.argv) > 1:
         os.makedirs(sys.argv[1], exist_ok=True)
         write_binary_stl(os.path.join(sys.argv[1], 'bent_sheet_bracket.stl'), bent_sheet_bracket())
+        write_binary_stl(os.path.join(sys.argv[1], 'hat_channel.stl'), hat_channel())
         write_binary_stl(os.path.join(sys.argv[1], 'lumpy_casting.stl'), lumpy_casting())
         write_binary_stl(os.path.join(sys.argv[1], 'freeform_panel.stl'), freeform_panel())
