@@ -39,38 +39,24 @@ def quads(rows, flip=False):
     return triangles
 
 
-def bent_sheet_bracket():
-    """A stamped bracket: a 2 mm sheet, 120 mm wide, legs of 100 mm and 70 mm joined by a 90°
-    bend of 10 mm radius, with a 3 mm bead embossed off-centre on the long leg. Closed, wound
-    outward. Its legs of unequal length make a view of the bend alone symmetric about the
-    bend's bisector, which the part is not; its width makes a view of one leg slide along it."""
-    thickness, width, across = 0.002, 0.12, 25
-    line = [(0.1 * k / 20, 0.0) for k in range(21)]  # long leg along x
-    bend = 0.01
-    for k in range(1, 9):
-        a = -math.pi / 2 + (math.pi / 2) * k / 8
-        line.append((0.1 + bend * math.cos(a), bend + bend * math.sin(a)))
-    line += [(0.11, bend + 0.06 * k / 12) for k in range(1, 13)]  # short leg along z
+def sheet(line, thickness, length, across, lift):
+    """A sheet of `thickness` whose mid-surface is the profile `line` (x, z points) swept along
+    y over `length` (`across` rows), each face pushed out by lift(i, y) at profile point i (an
+    embossing moves both faces). Closed by its side walls and end caps, wound outward."""
     normals = []
     for i in range(len(line)):
         (x0, z0), (x1, z1) = line[max(i - 1, 0)], line[min(i + 1, len(line) - 1)]
-        length = math.hypot(x1 - x0, z1 - z0)
-        normals.append((-(z1 - z0) / length, (x1 - x0) / length))
-
-    def bead(i, y):
-        if i > 20:
-            return 0.0
-        return 0.003 * math.exp(-(line[i][0] - 0.045) ** 2 / 1e-4 - (y - 0.08) ** 2 / 2e-4)
-
+        size = math.hypot(x1 - x0, z1 - z0)
+        normals.append((-(z1 - z0) / size, (x1 - x0) / size))
     outer, inner = [], []
     for i, (x, z) in enumerate(line):
         nx, nz = normals[i]
         row_out, row_in = [], []
         for j in range(across):
-            y = width * j / (across - 1)
-            lift = bead(i, y)
-            row_out.append((x + nx * (thickness / 2 + lift), y, z + nz * (thickness / 2 + lift)))
-            row_in.append((x - nx * (thickness / 2 - lift), y, z - nz * (thickness / 2 - lift)))
+            y = length * j / (across - 1)
+            up = lift(i, y)
+            row_out.append((x + nx * (thickness / 2 + up), y, z + nz * (thickness / 2 + up)))
+            row_in.append((x - nx * (thickness / 2 - up), y, z - nz * (thickness / 2 - up)))
         outer.append(row_out)
         inner.append(row_in)
     triangles = quads(outer) + quads(inner, flip=True)
@@ -82,22 +68,36 @@ def bent_sheet_bracket():
     return triangles
 
 
+def bent_sheet_bracket():
+    """A stamped bracket: a 2 mm sheet, 120 mm wide, legs of 100 mm and 70 mm joined by a 90°
+    bend of 10 mm radius, with a 3 mm bead embossed off-centre on the long leg. Closed, wound
+    outward. Its legs of unequal length make a view of the bend alone symmetric about the
+    bend's bisector, which the part is not; its width makes a view of one leg slide along it."""
+    line = [(0.1 * k / 20, 0.0) for k in range(21)]  # long leg along x
+    bend = 0.01
+    for k in range(1, 9):
+        a = -math.pi / 2 + (math.pi / 2) * k / 8
+        line.append((0.1 + bend * math.cos(a), bend + bend * math.sin(a)))
+    line += [(0.11, bend + 0.06 * k / 12) for k in range(1, 13)]  # short leg along z
+
+    def bead(i, y):
+        if i > 20:
+            return 0.0
+        return 0.003 * math.exp(-(line[i][0] - 0.045) ** 2 / 1e-4 - (y - 0.08) ** 2 / 2e-4)
+
+    return sheet(line, 0.002, 0.12, 25, bead)
+
+
 def hat_channel():
     """A stamped hat channel: a 1.5 mm sheet folded into a 40 × 30 mm U with flanges of 30 and
     15 mm, 150 mm long, a 2 mm dimple on the wide flange. Closed, wound outward. Turned by 180°
     about its vertical axis it lies on itself but for the flanges' difference."""
-    thickness, length, across = 0.0015, 0.15, 31
     corners = [(-0.05, 0.0), (-0.02, 0.0), (-0.02, 0.03), (0.02, 0.03), (0.02, 0.0), (0.035, 0.0)]
     line = []
     for (x0, z0), (x1, z1) in zip(corners[:-1], corners[1:]):
         steps = max(2, int(math.hypot(x1 - x0, z1 - z0) / 0.003))
         line += [(x0 + (x1 - x0) * k / steps, z0 + (z1 - z0) * k / steps) for k in range(steps)]
     line.append(corners[-1])
-    normals = []
-    for i in range(len(line)):
-        (x0, z0), (x1, z1) = line[max(i - 1, 0)], line[min(i + 1, len(line) - 1)]
-        size = math.hypot(x1 - x0, z1 - z0)
-        normals.append((-(z1 - z0) / size, (x1 - x0) / size))
 
     def dimple(i, y):
         x, z = line[i]
@@ -105,24 +105,7 @@ def hat_channel():
             return 0.0
         return 0.002 * math.exp(-(x + 0.035) ** 2 / 5e-5 - (y - 0.04) ** 2 / 5e-5)
 
-    outer, inner = [], []
-    for i, (x, z) in enumerate(line):
-        nx, nz = normals[i]
-        row_out, row_in = [], []
-        for j in range(across):
-            y = length * j / (across - 1)
-            lift = dimple(i, y)
-            row_out.append((x + nx * (thickness / 2 + lift), y, z + nz * (thickness / 2 + lift)))
-            row_in.append((x - nx * (thickness / 2 - lift), y, z - nz * (thickness / 2 - lift)))
-        outer.append(row_out)
-        inner.append(row_in)
-    triangles = quads(outer) + quads(inner, flip=True)
-    last = across - 1
-    triangles += quads([[outer[i][0], inner[i][0]] for i in range(len(line))], flip=True)
-    triangles += quads([[outer[i][last], inner[i][last]] for i in range(len(line))])
-    triangles += quads([outer[0], inner[0]], flip=True)
-    triangles += quads([outer[-1], inner[-1]])
-    return triangles
+    return sheet(line, 0.0015, 0.15, 31, dimple)
 
 
 def lumpy_casting():
