@@ -45,4 +45,10 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
 /// need not cover (a bar's section turned about its diagonal). Empty for a graph without area.
 std::vector<Eigen::Isometry3d> principalFrameTurns(const SurfaceGraph& graph);
 
+/// @brief The same 23 turns of a cube set along the principal axes of `graph`'s cell normals
+/// (area-weighted scatter, through the centroid of its cells): a sheet part's wall and face
+/// directions, about which (and their bisectors) its near-symmetries turn even where unequal
+/// flanges or legs tilt the axes of its spread. Empty for a graph without area or normals.
+std::vector<Eigen::Isometry3d> normalFrameTurns(const SurfaceGraph& graph);
+
 }  // namespace freeform_inspection

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "pipeline_internal.h"
+#include "turn_votes_internal.h"
 
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/organized_mesh.h"
@@ -66,17 +67,19 @@ struct Stopwatch {
 };
 
 // A pose that leaves more than this share of the scan's surface off the CAD is retried from
-// other starts (registerScan, retryStarts): a right pose of a clean scan explains all of it
-// but for its noise tails (0.99-1.0 for the scans of the registration table).
+// other starts (registerScan: probeStarts, votedTurnStarts): a right pose of a clean scan explains
+// all of it but for its noise tails (0.99-1.0 for the scans of the registration table).
 constexpr double kProbeBelowSurface = 0.99;
-// Below this share the cube's turns are tried as well. Right poses of camera views at 0.5 %
-// noise put 0.91-1.0 there, so most scans skip those 46 refinements; a turn only wins where
-// the scan sides with it.
+// Below this share every turn of turnStarts() is tried as well, not only those the features'
+// votes place. Right poses of camera views at 0.5 % noise put 0.91-1.0 there, so most scans
+// skip those 92 refinements; a turn only wins where the scan sides with it.
 constexpr double kRetryBelowSurface = 0.95;
 // The probes along the fit's weakest motions: this many motions, each taken these many cells
 // either way (a slid prismatic view is found from within a cell or so of where it belongs).
 constexpr int kProbedMotions = 2;
 constexpr double kProbeCells[] = {2.0, 4.0};
+// Retried poses apart from the pose whose weakest motions are probed in turn.
+constexpr std::size_t kProbedRivals = 3;
 
 // A refined candidate pose and how much of the scan it explains.
 struct RefinedPose {
@@ -89,12 +92,20 @@ struct RefinedPose {
 RefinedPose refineQuickly(const Model& model,
                           const Eigen::Isometry3d& pose,
                           const VerificationSet& set,
-                          const PipelineConfig& config) {
+                          const PipelineConfig& config,
+                          bool facing) {
   const double truncation = config.registration.verification_distance_cells * model.cellSize();
   IcpConfig quick = config.icp;
   quick.max_iterations = std::min(quick.max_iterations, 15);
-  const IcpResult icp =
-      refinePose(model.query(), set.points, pose, truncation, model.bounds().diagonal(), quick);
+  // Facing pairs where the normals point out of the material, as in the full refinement: on a
+  // wall thinner than the noise the nearest face is often the far side's.
+  const IcpResult icp = refinePose(model.query(),
+                                   set.points,
+                                   pose,
+                                   truncation,
+                                   model.bounds().diagonal(),
+                                   quick,
+                                   (facing && set.oriented) ? set.normals : Points());
   const Eigen::Isometry3d refined = icp.usable() ? icp.T_cad_scan : pose;
   return {refined,
           verificationScore(
@@ -106,13 +117,14 @@ RefinedPose refineQuickly(const Model& model,
 std::vector<RefinedPose> refineAll(const Model& model,
                                    const std::vector<Eigen::Isometry3d>& starts,
                                    const VerificationSet& set,
-                                   const PipelineConfig& config) {
+                                   const PipelineConfig& config,
+                                   bool facing = false) {
   std::vector<RefinedPose> refined(starts.size());
   const auto count = static_cast<long>(starts.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (long i = 0; i < count; ++i) {
     const auto u = static_cast<std::size_t>(i);
-    refined[u] = refineQuickly(model, starts[u], set, config);
+    refined[u] = refineQuickly(model, starts[u], set, config, facing);
   }
   return refined;
 }
@@ -161,18 +173,13 @@ RefinedHypotheses refineHypotheses(const Model& model,
   return out;
 }
 
-// The starts a pose that leaves some of the scan off the CAD is retried from (registerScan).
-// Probes along the two motions the fit constrains least, two and four cells either way: a
+// The starts a pose that leaves some of the scan off the CAD is retried from (registerScan):
+// probes along the two motions the fit constrains least, two and four cells either way. A
 // prismatic view slides along its axis without leaving the surface, so ICP stays where the
-// triplet put it. Below kRetryBelowSurface also the cube's turns about the CAD's principal axes
-// (a bar's view turned about a diagonal of its section) and about the view's own (the view of
-// a bent sheet that shows its bend is symmetric about the bend's bisector, which the part as a
-// whole, with legs of unequal length, is not).
-std::vector<Eigen::Isometry3d> retryStarts(const Model& model,
-                                           const SurfaceGraph& scan,
+// triplet put it.
+std::vector<Eigen::Isometry3d> probeStarts(const Model& model,
                                            const VerificationSet& set,
                                            const Eigen::Isometry3d& pose,
-                                           double surface_share,
                                            double truncation) {
   std::vector<Eigen::Isometry3d> starts;
   for (const WeakMotion& motion :
@@ -183,13 +190,62 @@ std::vector<Eigen::Isometry3d> retryStarts(const Model& model,
       }
     }
   }
-  if (surface_share < kRetryBelowSurface) {
-    for (const Eigen::Isometry3d& turn : principalFrameTurns(model.descriptors().graph)) {
-      starts.push_back(turn * pose);
+  return starts;
+}
+
+// The cube's turns of `pose` about the CAD's principal axes (a bar's view turned about a diagonal
+// of its section), about the view's own (the view of a bent sheet that shows its bend is
+// symmetric about the bend's bisector, which the part as a whole, with legs of unequal length, is
+// not) and about the axes of either one's normals (a sheet part's wall directions, which unequal
+// flanges or legs do not tilt as they tilt the axes of its spread).
+std::vector<Eigen::Isometry3d> turnStarts(const Model& model,
+                                          const SurfaceGraph& scan,
+                                          const Eigen::Isometry3d& pose) {
+  std::vector<Eigen::Isometry3d> starts;
+  for (const Eigen::Isometry3d& turn : principalFrameTurns(model.descriptors().graph)) {
+    starts.push_back(turn * pose);
+  }
+  for (const Eigen::Isometry3d& turn : principalFrameTurns(scan)) {
+    starts.push_back(pose * turn);
+  }
+  for (const Eigen::Isometry3d& turn : normalFrameTurns(model.descriptors().graph)) {
+    starts.push_back(turn * pose);
+  }
+  for (const Eigen::Isometry3d& turn : normalFrameTurns(scan)) {
+    starts.push_back(pose * turn);
+  }
+  return starts;
+}
+
+// The probes of probeStarts() again, about the best few retried poses that are not the pose
+// itself: a turned start lands within a few cells of a confusion, and on a sheet part ICP cannot
+// close that gap where the walls it should meet are farther than its cut-off (a hat channel
+// turned about an axis its unequal flanges move off the centroid).
+std::vector<Eigen::Isometry3d> probesAroundRivals(const Model& model,
+                                                  const VerificationSet& set,
+                                                  const std::vector<RefinedPose>& retried,
+                                                  const Eigen::Isometry3d& pose,
+                                                  const Eigen::Vector3d& reference,
+                                                  double truncation) {
+  std::vector<const RefinedPose*> rivals;
+  for (const RefinedPose& candidate : retried) {
+    if (candidate.score > 0.0 &&
+        separatePoses(pose, candidate.T_cad_scan, reference, model.cellSize()) &&
+        std::all_of(rivals.begin(), rivals.end(), [&](const RefinedPose* r) {
+          return separatePoses(r->T_cad_scan, candidate.T_cad_scan, reference, model.cellSize());
+        })) {
+      rivals.push_back(&candidate);
     }
-    for (const Eigen::Isometry3d& turn : principalFrameTurns(scan)) {
-      starts.push_back(pose * turn);
-    }
+  }
+  std::stable_sort(rivals.begin(), rivals.end(), [](const RefinedPose* a, const RefinedPose* b) {
+    return a->score > b->score;
+  });
+  rivals.resize(std::min<std::size_t>(rivals.size(), kProbedRivals));
+  std::vector<Eigen::Isometry3d> starts;
+  for (const RefinedPose* rival : rivals) {
+    const std::vector<Eigen::Isometry3d> probes =
+        probeStarts(model, set, rival->T_cad_scan, truncation);
+    starts.insert(starts.end(), probes.begin(), probes.end());
   }
   return starts;
 }
@@ -388,15 +444,34 @@ void registerScan(const Model& model,
   // A pose that leaves some of the scan's surface off the CAD may be a confusion that neither the
   // triplets nor the twins reached: a bar's view turned about a diagonal of its section, a bent
   // sheet's view with its legs swapped, a prismatic view slid along its axis. It is retried from
-  // the starts of retryStarts(). A retried pose the scan clearly sides with (scanPrefers), still
-  // after it is refined as fully as the pose, replaces it; one the scan cannot tell from it
-  // becomes a contender, so that the verification below says ambiguous instead of picking one.
+  // the probes along its weakest motions, the turns that the features' translation votes place
+  // (votedTurnStarts: a turn about the centroid is many cells off where a part's mass is off its
+  // near-symmetry's axis), below kRetryBelowSurface every turn as it is, then the probes about
+  // the best few poses so found (probesAroundRivals). A retried pose the scan clearly sides with
+  // (scanPrefers), still after it is refined as fully as the pose, replaces it; one the scan cannot
+  // tell from it becomes a contender, so that the verification below says ambiguous instead of
+  // picking one.
   if (icp.usable() && surface_share < kProbeBelowSurface) {
-    const std::vector<RefinedPose> retried = refineAll(
-        model,
-        retryStarts(model, scan.graph, set, icp.T_cad_scan, surface_share, coarse_truncation),
-        set,
-        config);
+    std::vector<Eigen::Isometry3d> starts =
+        probeStarts(model, set, icp.T_cad_scan, coarse_truncation);
+    const bool turn = surface_share < kRetryBelowSurface;
+    if (turn) {
+      const std::vector<Eigen::Isometry3d> turned = turnStarts(model, scan.graph, icp.T_cad_scan);
+      const std::vector<Eigen::Isometry3d> voted =
+          internal::votedTurnStarts(turned, candidates, scan.graph, cad.graph, reference, cell);
+      starts.insert(starts.end(), turned.begin(), turned.end());
+      starts.insert(starts.end(), voted.begin(), voted.end());
+    }
+    std::vector<RefinedPose> retried = refineAll(model, starts, set, config, turn);
+    if (turn) {
+      const std::vector<RefinedPose> probed = refineAll(
+          model,
+          probesAroundRivals(model, set, retried, icp.T_cad_scan, reference, coarse_truncation),
+          set,
+          config,
+          true);
+      retried.insert(retried.end(), probed.begin(), probed.end());
+    }
     const std::vector<double> current_terms = termsAt(icp.T_cad_scan);
     const double current_score = fineScore(icp.T_cad_scan);
     const RefinedPose* chosen = nullptr;

@@ -46,6 +46,23 @@ std::optional<PrincipalFrame> principalFrame(const SurfaceGraph& graph) {
       centroid, solver.eigenvectors(), solver.eigenvalues().cwiseMax(0.0).cwiseSqrt()};
 }
 
+// The area-weighted centroid and the principal axes of the cells' normals (eigenvectors of
+// Σ a n nᵀ): the directions of a sheet part's walls and faces. Unlike the axes of the points'
+// spread, these stay put when an appendage on one side (a wider flange) shifts the mass.
+std::optional<PrincipalFrame> normalFrame(const SurfaceGraph& graph) {
+  std::optional<PrincipalFrame> frame = principalFrame(graph);
+  if (!frame || graph.normals.size() != graph.size()) {
+    return std::nullopt;
+  }
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (std::size_t c = 0; c < graph.size(); ++c) {
+    scatter += graph.area[c] * graph.normals[c] * graph.normals[c].transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+  frame->axes = solver.eigenvectors();
+  return frame;
+}
+
 // The motion turning by `rotation` about `centroid`.
 Eigen::Isometry3d turnAbout(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& centroid) {
   Eigen::Isometry3d S = Eigen::Isometry3d::Identity();
@@ -75,6 +92,28 @@ std::vector<Eigen::Isometry3d> principalAxisRotations(const SurfaceGraph& graph)
     }
   }
   return motions;
+}
+
+// Signed permutations of the frame's axes with determinant +1, about its centroid: the rotation
+// group of a cube set along them (23, the identity left out). Empty without a frame.
+std::vector<Eigen::Isometry3d> cubeTurns(const std::optional<PrincipalFrame>& frame) {
+  std::vector<Eigen::Isometry3d> turns;
+  if (!frame) {
+    return turns;
+  }
+  const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (const auto& order : orders) {
+    for (int signs = 0; signs < 8; ++signs) {
+      Eigen::Matrix3d Q = Eigen::Matrix3d::Zero();
+      for (int row = 0; row < 3; ++row) {
+        Q(row, order[row]) = ((signs >> row) & 1) != 0 ? -1.0 : 1.0;
+      }
+      if (Q.determinant() > 0.0 && !Q.isIdentity()) {
+        turns.push_back(turnAbout(frame->axes * Q * frame->axes.transpose(), frame->centroid));
+      }
+    }
+  }
+  return turns;
 }
 
 }  // namespace
@@ -149,26 +188,11 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
 }
 
 std::vector<Eigen::Isometry3d> principalFrameTurns(const SurfaceGraph& graph) {
-  std::vector<Eigen::Isometry3d> turns;
-  const std::optional<PrincipalFrame> frame = principalFrame(graph);
-  if (!frame) {
-    return turns;
-  }
-  // Signed permutations of the principal axes with determinant +1: the rotation group of a cube
-  // set along them (24, the identity left out).
-  const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (const auto& order : orders) {
-    for (int signs = 0; signs < 8; ++signs) {
-      Eigen::Matrix3d Q = Eigen::Matrix3d::Zero();
-      for (int row = 0; row < 3; ++row) {
-        Q(row, order[row]) = ((signs >> row) & 1) != 0 ? -1.0 : 1.0;
-      }
-      if (Q.determinant() > 0.0 && !Q.isIdentity()) {
-        turns.push_back(turnAbout(frame->axes * Q * frame->axes.transpose(), frame->centroid));
-      }
-    }
-  }
-  return turns;
+  return cubeTurns(principalFrame(graph));
+}
+
+std::vector<Eigen::Isometry3d> normalFrameTurns(const SurfaceGraph& graph) {
+  return cubeTurns(normalFrame(graph));
 }
 
 }  // namespace freeform_inspection

@@ -3,9 +3,10 @@
 # Copyright 2026 The freeform_inspection authors
 """Writes generated test parts (see README.md): shapes of the kinds the package inspects that
 the public meshes lack. Python 3 standard library only, deterministic, metres.
-Usage: python3 make_parts.py          writes meshes/bent_sheet_bracket.stl (the tests use it)
-       python3 make_parts.py DIR      writes it, a hat channel, a lumpy casting and an open
-                                      freeform panel into DIR, for bench/registration_eval
+Usage: python3 make_parts.py          writes meshes/bent_sheet_bracket.stl and
+                                      meshes/hat_channel.stl (the tests use them)
+       python3 make_parts.py DIR      writes those two, a lumpy casting and an open freeform
+                                      panel into DIR, for bench/registration_eval
                                       (docs/benchmarks.md)
 """
 import math
@@ -168,6 +169,7 @@ def freeform_panel():
 
 if __name__ == '__main__':
     write_binary_stl(os.path.join(HERE, 'bent_sheet_bracket.stl'), bent_sheet_bracket())
+    write_binary_stl(os.path.join(HERE, 'hat_channel.stl'), hat_channel())
     if len(sys.argv) > 1:
         os.makedirs(sys.argv[1], exist_ok=True)
         write_binary_stl(os.path.join(sys.argv[1], 'bent_sheet_bracket.stl'), bent_sheet_bracket())
