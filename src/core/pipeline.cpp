@@ -67,12 +67,13 @@ struct Stopwatch {
 };
 
 // A pose that leaves more than this share of the scan's surface off the CAD is retried from
-// other starts (registerScan: probeStarts, votedTurnStarts): a right pose of a clean scan explains
-// all of it but for its noise tails (0.99-1.0 for the scans of the registration table).
+// other starts (registerScan, probeStarts): a right pose of a clean scan explains all of it but
+// for its noise tails (0.99-1.0 for the scans of the registration table).
 constexpr double kProbeBelowSurface = 0.99;
-// Below this share every turn of turnStarts() is tried as well, not only those the features'
-// votes place. Right poses of camera views at 0.5 % noise put 0.91-1.0 there, so most scans
-// skip those 92 refinements; a turn only wins where the scan sides with it.
+// Below this share the turns of turnStarts() are tried as well, as they are and where the
+// features' votes place them, and the best poses found are probed in turn. Right poses of
+// camera views at 0.5 % noise put 0.91-1.0 there, so most scans skip those refinements (92
+// turns, up to 32 placed, 24 probes); a turn only wins where the scan sides with it.
 constexpr double kRetryBelowSurface = 0.95;
 // The probes along the fit's weakest motions: this many motions, each taken these many cells
 // either way (a slid prismatic view is found from within a cell or so of where it belongs).
@@ -97,8 +98,10 @@ RefinedPose refineQuickly(const Model& model,
   const double truncation = config.registration.verification_distance_cells * model.cellSize();
   IcpConfig quick = config.icp;
   quick.max_iterations = std::min(quick.max_iterations, 15);
-  // Facing pairs where the normals point out of the material, as in the full refinement: on a
-  // wall thinner than the noise the nearest face is often the far side's.
+  // `facing`: pairs with faces turned the points' way where the normals point out of the
+  // material, as in the full refinement (on a wall thinner than the noise the nearest face is
+  // often the far side's). Only the retries ask for it: in the hypotheses' ranking it moved the
+  // first pose of camera views of a bar (docs/registration.md, "Turns placed by the features").
   const IcpResult icp = refinePose(model.query(),
                                    set.points,
                                    pose,
