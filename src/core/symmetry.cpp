@@ -24,8 +24,8 @@ struct PrincipalFrame {
   Eigen::Vector3d spread;
 };
 
-// Empty for a graph without area.
-std::optional<PrincipalFrame> principalFrame(const SurfaceGraph& graph) {
+// The area-weighted centroid of the cells; empty for a graph without area.
+std::optional<Eigen::Vector3d> areaCentroid(const SurfaceGraph& graph) {
   double area = 0.0;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (std::size_t c = 0; c < graph.size(); ++c) {
@@ -35,23 +35,30 @@ std::optional<PrincipalFrame> principalFrame(const SurfaceGraph& graph) {
   if (!(area > 0.0)) {
     return std::nullopt;
   }
-  centroid /= area;
+  return Eigen::Vector3d(centroid / area);
+}
+
+// Empty for a graph without area.
+std::optional<PrincipalFrame> principalFrame(const SurfaceGraph& graph) {
+  const std::optional<Eigen::Vector3d> centroid = areaCentroid(graph);
+  if (!centroid) {
+    return std::nullopt;
+  }
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   for (std::size_t c = 0; c < graph.size(); ++c) {
-    const Eigen::Vector3d d = graph.centroids[c] - centroid;
+    const Eigen::Vector3d d = graph.centroids[c] - *centroid;
     covariance += graph.area[c] * d * d.transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
   return PrincipalFrame{
-      centroid, solver.eigenvectors(), solver.eigenvalues().cwiseMax(0.0).cwiseSqrt()};
+      *centroid, solver.eigenvectors(), solver.eigenvalues().cwiseMax(0.0).cwiseSqrt()};
 }
 
-// The area-weighted centroid and the principal axes of the cells' normals (eigenvectors of
-// Σ a n nᵀ): the directions of a sheet part's walls and faces. Unlike the axes of the points'
-// spread, these stay put when an appendage on one side (a wider flange) shifts the mass.
-std::optional<PrincipalFrame> normalFrame(const SurfaceGraph& graph) {
-  std::optional<PrincipalFrame> frame = principalFrame(graph);
-  if (!frame || graph.normals.size() != graph.size()) {
+// The principal axes (columns) of the cells' normals, eigenvectors of Σ a n nᵀ: the directions of
+// a sheet part's walls and faces. Unlike the axes of the points' spread, these stay put when an
+// appendage on one side (a wider flange) shifts the mass. Empty without normals.
+std::optional<Eigen::Matrix3d> normalAxes(const SurfaceGraph& graph) {
+  if (graph.normals.size() != graph.size()) {
     return std::nullopt;
   }
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
@@ -59,8 +66,7 @@ std::optional<PrincipalFrame> normalFrame(const SurfaceGraph& graph) {
     scatter += graph.area[c] * graph.normals[c] * graph.normals[c].transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
-  frame->axes = solver.eigenvectors();
-  return frame;
+  return solver.eigenvectors();
 }
 
 // The motion turning by `rotation` about `centroid`.
@@ -94,13 +100,11 @@ std::vector<Eigen::Isometry3d> principalAxisRotations(const SurfaceGraph& graph)
   return motions;
 }
 
-// Signed permutations of the frame's axes with determinant +1, about its centroid: the rotation
-// group of a cube set along them (23, the identity left out). Empty without a frame.
-std::vector<Eigen::Isometry3d> cubeTurns(const std::optional<PrincipalFrame>& frame) {
+// Signed permutations of `axes` (columns) with determinant +1, about `centroid`: the rotation
+// group of a cube set along them (23, the identity left out).
+std::vector<Eigen::Isometry3d> cubeTurns(const Eigen::Matrix3d& axes,
+                                         const Eigen::Vector3d& centroid) {
   std::vector<Eigen::Isometry3d> turns;
-  if (!frame) {
-    return turns;
-  }
   const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   for (const auto& order : orders) {
     for (int signs = 0; signs < 8; ++signs) {
@@ -109,7 +113,7 @@ std::vector<Eigen::Isometry3d> cubeTurns(const std::optional<PrincipalFrame>& fr
         Q(row, order[row]) = ((signs >> row) & 1) != 0 ? -1.0 : 1.0;
       }
       if (Q.determinant() > 0.0 && !Q.isIdentity()) {
-        turns.push_back(turnAbout(frame->axes * Q * frame->axes.transpose(), frame->centroid));
+        turns.push_back(turnAbout(axes * Q * axes.transpose(), centroid));
       }
     }
   }
@@ -188,11 +192,14 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
 }
 
 std::vector<Eigen::Isometry3d> principalFrameTurns(const SurfaceGraph& graph) {
-  return cubeTurns(principalFrame(graph));
+  const std::optional<PrincipalFrame> frame = principalFrame(graph);
+  return frame ? cubeTurns(frame->axes, frame->centroid) : std::vector<Eigen::Isometry3d>();
 }
 
 std::vector<Eigen::Isometry3d> normalFrameTurns(const SurfaceGraph& graph) {
-  return cubeTurns(normalFrame(graph));
+  const std::optional<Eigen::Vector3d> centroid = areaCentroid(graph);
+  const std::optional<Eigen::Matrix3d> axes = normalAxes(graph);
+  return centroid && axes ? cubeTurns(*axes, *centroid) : std::vector<Eigen::Isometry3d>();
 }
 
 }  // namespace freeform_inspection
