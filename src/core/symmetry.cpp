@@ -120,6 +120,73 @@ std::vector<Eigen::Isometry3d> cubeTurns(const Eigen::Matrix3d& axes,
   return turns;
 }
 
+// How far a self-match is searched along its weakest motion, as a share of the diagonal, in
+// steps of one cell. A prismatic part's self-match slides along its axis without leaving the
+// surface, so ICP stops wherever the start put it: the hat channel's half turn came 40 mm (a
+// quarter of its length) off the turn that lays it best onto itself, and a scan's twin of a
+// turned pose then missed the truth by as much.
+constexpr double kSlideSearchShare = 0.3;
+
+// `candidate` moved to the best place along its weakest motion (scored without ICP, one cell
+// apart), then refined there; unchanged unless that scores higher.
+Symmetry slidToBest(const Symmetry& candidate,
+                    const VerificationSet& set,
+                    const MeshQuery& query,
+                    double truncation,
+                    double cell_size,
+                    double diagonal,
+                    double normal_tolerance_deg,
+                    const IcpConfig& config_icp) {
+  const std::vector<WeakMotion> motions =
+      weakestMotions(query, set.points, candidate.S, truncation, 1);
+  if (motions.empty()) {
+    return candidate;
+  }
+  const auto steps = static_cast<int>(std::ceil(kSlideSearchShare * diagonal / cell_size));
+  Eigen::Isometry3d best_start = candidate.S;
+  double best_start_score = candidate.score;
+  for (int step = -steps; step <= steps; ++step) {
+    if (step == 0) {
+      continue;
+    }
+    const Eigen::Isometry3d start = motions.front().by(step * cell_size) * candidate.S;
+    const double score = verificationScore(start, set, query, truncation, normal_tolerance_deg);
+    if (score > best_start_score) {
+      best_start = start;
+      best_start_score = score;
+    }
+  }
+  if (best_start.isApprox(candidate.S)) {
+    return candidate;
+  }
+  const IcpResult icp = refinePose(query, set.points, best_start, truncation, diagonal, config_icp);
+  const Eigen::Isometry3d S = icp.usable() ? icp.T_cad_scan : best_start;
+  const double score = verificationScore(S, set, query, truncation, normal_tolerance_deg);
+  return score > candidate.score ? Symmetry{S, score} : candidate;
+}
+
+// The motions scoring at least `floor`, best first, each apart from the identity and from every
+// better one (the best of each group of starts that ended on one self-match). Deterministic.
+std::vector<Symmetry> distinctBestFirst(std::vector<Symmetry> candidates,
+                                        double floor,
+                                        const Eigen::Vector3d& reference,
+                                        double cell_size) {
+  std::stable_sort(candidates.begin(), candidates.end(), [](const Symmetry& a, const Symmetry& b) {
+    return a.score > b.score;
+  });
+  std::vector<Symmetry> distinct;
+  const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
+  for (const Symmetry& candidate : candidates) {
+    if (candidate.score >= floor && separatePoses(identity, candidate.S, reference, cell_size) &&
+        std::all_of(distinct.begin(), distinct.end(), [&](const Symmetry& s) {
+          return separatePoses(s.S, candidate.S, reference, cell_size);
+        })) {
+      distinct.push_back(candidate);
+    }
+  }
+  return distinct;
+}
+
 }  // namespace
 
 std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
@@ -127,9 +194,8 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
                                      double cell_size,
                                      double diagonal,
                                      double min_score) {
-  std::vector<Symmetry> symmetries;
   if (!cad.status.ok() || cad.graph.size() < 3 || !query.status().ok()) {
-    return symmetries;
+    return {};
   }
   const double r_max = cad.radii.back();
   const FeatureResult features =
@@ -162,7 +228,9 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
       starts.push_back(hypothesis.T_cad_scan);
     }
   }
-  // Refine every start (in parallel: one region for all of them), then keep the new ones.
+  // Refine every start (in parallel: one region for all of them); slide the distinct ones that
+  // come within half the threshold (many starts end on one self-match, so this is a few), then
+  // keep the distinct ones that meet it.
   std::vector<Symmetry> refined(starts.size());
   const auto count = static_cast<long>(starts.size());
 #pragma omp parallel for schedule(dynamic, 1)
@@ -176,19 +244,21 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
     refined[static_cast<std::size_t>(i)] = {
         S, verificationScore(S, set, query, truncation, config.normal_tolerance_deg)};
   }
-  for (const Symmetry& candidate : refined) {
-    const bool is_new = separatePoses(identity, candidate.S, reference, cell_size) &&
-                        std::all_of(symmetries.begin(), symmetries.end(), [&](const Symmetry& s) {
-                          return separatePoses(s.S, candidate.S, reference, cell_size);
-                        });
-    if (candidate.score >= min_score && is_new) {
-      symmetries.push_back(candidate);
-    }
+  std::vector<Symmetry> slid = distinctBestFirst(refined, 0.5 * min_score, reference, cell_size);
+  const auto slid_count = static_cast<long>(slid.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long i = 0; i < slid_count; ++i) {
+    Symmetry& candidate = slid[static_cast<std::size_t>(i)];
+    candidate = slidToBest(candidate,
+                           set,
+                           query,
+                           truncation,
+                           cell_size,
+                           diagonal,
+                           config.normal_tolerance_deg,
+                           config_icp);
   }
-  std::stable_sort(symmetries.begin(), symmetries.end(), [](const Symmetry& a, const Symmetry& b) {
-    return a.score > b.score;
-  });
-  return symmetries;
+  return distinctBestFirst(slid, min_score, reference, cell_size);
 }
 
 std::vector<Eigen::Isometry3d> principalFrameTurns(const SurfaceGraph& graph) {
