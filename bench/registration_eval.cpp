@@ -6,12 +6,14 @@
 // with status "ok"; a wrong pose reported as "ok" is counted separately (it must never happen).
 //
 //   registration_eval --cad FILE [--cad-scale S] [--noise R] [--partial] [--outliers F]
-//                     [--points N] [--cases N] [--first-seed N] [--mesh-copy] [--camera] [--json]
-//                     [--config YAML]
+//                     [--points N] [--cases N] [--first-seed N] [--mesh-copy] [--camera [--table]]
+//                     [--json] [--config YAML]
 //
 // --mesh-copy is the paper's §4.5 experiment: the scan is the CAD mesh itself, vertices moved by
 // Gaussian noise along their normals, at a random pose (a mesh scan, faces included).
-// --camera registers one range image of the virtual scanner per case instead. Environment:
+// --camera registers one range image of the virtual scanner per case instead; --table puts the
+// part on a table that the camera sees around it (the success rule's centroid is the part's
+// points only). Environment:
 // FI_KEEP_GRID keeps a camera view's grid, FI_NO_NORMALS drops the scan's normals, FI_VERBOSE
 // prints every case's status message under its line, FI_DIAG how the pose relates to the truth
 // (printTruthDiagnostics).
@@ -44,6 +46,7 @@ struct Options {
   bool json = false;
   bool mesh_copy = false;
   bool camera = false;  // --camera: one VGA range image (virtual_scanner.h) per case
+  bool table = false;   // --table: the camera also sees the table the part rests on
   std::string config;   // --config: a pipeline YAML (config/default.yaml's keys); default: none
 };
 
@@ -150,6 +153,8 @@ bool parse(int argc, char** argv, Options* options) {
       options->scan.partial = true;
     } else if (flag == "--camera") {
       options->camera = true;
+    } else if (flag == "--table") {
+      options->table = true;
     } else if (flag == "--mesh-copy") {
       options->mesh_copy = true;
     } else if (flag == "--json") {
@@ -171,7 +176,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: registration_eval --cad FILE [--cad-scale S] [--noise R] "
                  "[--partial] [--outliers F] [--points N] [--cases N] [--first-seed N] "
-                 "[--mesh-copy] [--camera] [--json] [--config YAML]\n");
+                 "[--mesh-copy] [--camera [--table]] [--json] [--config YAML]\n");
     return 2;
   }
   fi::PipelineConfig pipeline_config;
@@ -217,11 +222,13 @@ int main(int argc, char** argv) {
             : generated.scan;
     Eigen::Isometry3d truth = generated.T_cad_scan;
     std::size_t outliers = options.mesh_copy ? 0 : generated.outliers;
+    fi::Points part_points;  // camera: the measured points of the part (not of the table)
     if (options.camera) {
       fi::VirtualScannerConfig camera;
       camera.seed = config.seed;
       camera.fill_ratio = 0.8;
       camera.noise_ratio = config.noise_ratio;
+      camera.support = options.table;
       const fi::VirtualScan view = fi::makeVirtualScan(model.query(), camera);
       if (!view.status.ok()) {
         std::fprintf(stderr, "registration_eval: %s\n", view.status.message.c_str());
@@ -238,6 +245,11 @@ int main(int argc, char** argv) {
       }
       truth = view.T_cad_scan;
       outliers = 0;
+      for (std::size_t i = 0; i < view.scan.points.size(); ++i) {
+        if (view.pixels[i] == fi::PixelOutcome::kValid) {
+          part_points.push_back(view.scan.points[i]);
+        }
+      }
     }
     if (std::getenv("FI_NO_NORMALS") != nullptr) {
       scan.normals.clear();
@@ -245,9 +257,10 @@ int main(int argc, char** argv) {
     const fi::InspectionResult result = fi::inspect(model, scan, pipeline_config);
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     std::size_t surface = 0;
-    for (std::size_t i = 0; i + outliers < scan.points.size(); ++i) {
-      if (scan.points[i].allFinite()) {
-        centroid += scan.points[i];
+    const fi::Points& measured = options.camera ? part_points : scan.points;
+    for (std::size_t i = 0; i + outliers < measured.size(); ++i) {
+      if (measured[i].allFinite()) {
+        centroid += measured[i];
         ++surface;
       }
     }

@@ -68,6 +68,12 @@ struct VirtualScannerConfig {
   /// dents and bumps in the CAD frame [m]: each hit point moves along the CAD's outward normal
   /// by the sum of their defectDisplacement(), before the noise
   std::vector<SurfaceDefect> defects;
+  /// true: the part rests on a flat support (a table) that the sensor sees wherever the part
+  /// does not hide it, measured with the same noise and dropouts. Its plane touches the part's
+  /// far side; its normal faces the sensor, turned from the optical axis by a random angle
+  /// (from the seed) of at most `support_tilt_deg`. It reaches the edges of the image.
+  bool support = false;
+  double support_tilt_deg = 30.0;  ///< [deg] in [0, 60]
   std::uint64_t seed = 1;  ///< same seed, same config → bit-identical scan, any thread count
 };
 
@@ -83,12 +89,14 @@ enum class PixelOutcome : std::uint8_t {
   kDropout,     ///< a return lost at random (NaN)
   kValid,       ///< a measured surface point (finite)
   kOutlier,     ///< a spurious range (finite, not on the surface)
+  kSupport,     ///< a measured point of the support the part rests on (finite, not the part)
 };
 
 /// How many pixels ended in each outcome; they add up to width · height.
 struct VirtualScanCounts {
   std::size_t valid = 0;         ///< finite points on the (defect-displaced, noisy) surface
   std::size_t outliers = 0;      ///< finite spurious points
+  std::size_t support = 0;       ///< finite points of the support (VirtualScannerConfig::support)
   std::size_t misses = 0;        ///< rays that hit nothing
   std::size_t out_of_range = 0;  ///< hits outside [min_range, max_range]
   std::size_t grazing = 0;       ///< hits beyond max_incidence_deg or on back faces
@@ -103,11 +111,14 @@ struct VirtualScan {
   /// normals, no faces
   Scan scan;
   Eigen::Isometry3d T_cad_scan = Eigen::Isometry3d::Identity();  ///< truth: scan → CAD
-  std::vector<PixelOutcome> pixels;   ///< per pixel, row-major (finite = kValid or kOutlier)
-  VirtualScanCounts counts;           ///< pixels per outcome
-  double noise_sigma = 0.0;           ///< [m] the range noise σ applied
-  double working_distance = 0.0;      ///< [m] sensor origin to the part's bounding-box centre
-  double sweep_length = 0.0;          ///< [m] line scanner: the sweep used (0 for a camera)
+  std::vector<PixelOutcome> pixels;  ///< per pixel, row-major (finite = kValid or kOutlier)
+  VirtualScanCounts counts;          ///< pixels per outcome
+  double noise_sigma = 0.0;          ///< [m] the range noise σ applied
+  double working_distance = 0.0;     ///< [m] sensor origin to the part's bounding-box centre
+  double sweep_length = 0.0;         ///< [m] line scanner: the sweep used (0 for a camera)
+  /// The support's plane in the sensor frame, n·x = d with n unit and facing the sensor (zero
+  /// without a support).
+  Eigen::Vector4d support_plane = Eigen::Vector4d::Zero();
   std::vector<std::string> warnings;  ///< e.g. the part reaches outside the sensor's range
 };
 

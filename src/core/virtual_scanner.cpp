@@ -148,6 +148,7 @@ void validateEffects(const VirtualScannerConfig& config, std::vector<std::string
   checkRange(errors, "dropout_probability", config.dropout_probability, 0.0, 1.0, false);
   checkRange(errors, "outlier_fraction", config.outlier_fraction, 0.0, 1.0, false);
   checkRange(errors, "max_incidence_deg", config.max_incidence_deg, 0.0, 90.0, true);
+  checkRange(errors, "support_tilt_deg", config.support_tilt_deg, 0.0, 60.0, false);
   for (std::size_t i = 0; i < config.defects.size(); ++i) {
     const SurfaceDefect& d = config.defects[i];
     const bool ok = d.centre.allFinite() && std::isfinite(d.radius) && d.radius > 0.0 &&
@@ -172,7 +173,28 @@ struct Setup {
   double cos_max_incidence = 0.0;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // part's box centre, sensor frame [m]
   double radius = 0.0;  // [m] the part's bounding sphere (half the box diagonal)
+  bool support = false;
+  Eigen::Vector3d support_normal = Eigen::Vector3d::Zero();  // sensor frame, unit, to the sensor
+  double support_offset = 0.0;                               // [m] n·x on the plane
 };
+
+// The support's plane: its normal turned from −z (towards the sensor) by a random tilt about a
+// random axis in the image plane, its offset the least n·v over the part's vertices, so the
+// plane touches the part's far side and the whole part lies on the sensor's side of it.
+void placeSupport(const VirtualScannerConfig& config, const Points& vertices, Setup* setup) {
+  // A stream of its own (the index no pixel has), so the pixels' draws stay as they were.
+  PixelRandom random(config.seed, std::numeric_limits<std::uint64_t>::max());
+  const double tilt = config.support_tilt_deg * kDegToRad * random.uniform();
+  const double azimuth = 2.0 * kPi * random.uniform();
+  const Eigen::Vector3d axis(std::cos(azimuth), std::sin(azimuth), 0.0);
+  setup->support = true;
+  setup->support_normal = Eigen::AngleAxisd(tilt, axis) * Eigen::Vector3d(0.0, 0.0, -1.0);
+  setup->support_offset = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& v : vertices) {
+    setup->support_offset =
+        std::min(setup->support_offset, setup->support_normal.dot(setup->T_sensor_cad * v));
+  }
+}
 
 // Random pose: the working distance D where the bounding sphere's projected radius r·f/D is
 // fill_ratio × half the image's smaller side (the profile's width for a line scanner).
@@ -249,6 +271,39 @@ Eigen::Vector3d outlierPoint(const VirtualScannerConfig& config,
   return ray.origin + (low + (high - low) * u) * ray.direction;
 }
 
+// A ray that misses the part meets the support behind it (or nothing, when it runs parallel to
+// or away from the support's plane), with the part's range, incidence, dropout and noise rules.
+PixelSample supportPixel(const VirtualScannerConfig& config,
+                         const Setup& setup,
+                         const Ray& ray,
+                         double u_dropout,
+                         double noise) {
+  PixelSample sample;
+  const double towards = setup.support_normal.dot(ray.direction);
+  if (!(towards < 0.0)) {
+    return sample;  // kMiss
+  }
+  const double t = (setup.support_offset - setup.support_normal.dot(ray.origin)) / towards;
+  if (!(t > 0.0)) {
+    return sample;  // the sensor is behind the support: a configuration no sensor has
+  }
+  if (t < config.min_range || t > config.max_range) {
+    sample.outcome = PixelOutcome::kOutOfRange;
+    return sample;
+  }
+  if (-towards < setup.cos_max_incidence) {
+    sample.outcome = PixelOutcome::kGrazing;
+    return sample;
+  }
+  if (u_dropout < config.dropout_probability) {
+    sample.outcome = PixelOutcome::kDropout;
+    return sample;
+  }
+  sample.outcome = PixelOutcome::kSupport;
+  sample.point = ray.origin + (t + setup.sigma * noise) * ray.direction;
+  return sample;
+}
+
 // One pixel. Its random numbers are drawn up front, in a fixed order and number, so each effect's
 // pattern stays the same when another effect is switched on or off.
 PixelSample scanPixel(const MeshQuery& cad,
@@ -275,7 +330,7 @@ PixelSample scanPixel(const MeshQuery& cad,
   const Eigen::Vector3d direction = setup.T_cad_sensor.linear() * ray.direction;
   const RayHit hit = cad.castRay(setup.T_cad_sensor * ray.origin, direction);
   if (!hit.hit) {
-    return sample;  // kMiss
+    return setup.support ? supportPixel(config, setup, ray, u_dropout, noise) : sample;
   }
   if (hit.t < config.min_range || hit.t > config.max_range) {
     sample.outcome = PixelOutcome::kOutOfRange;
@@ -326,6 +381,9 @@ void count(const PixelSample& sample, VirtualScanCounts& counts) {
     case PixelOutcome::kOutlier:
       ++counts.outliers;
       break;
+    case PixelOutcome::kSupport:
+      ++counts.support;
+      break;
   }
 }
 
@@ -364,7 +422,11 @@ VirtualScan makeVirtualScan(const MeshQuery& cad, const VirtualScannerConfig& co
     return result;
   }
   const BoundingBox box = computeBoundingBox(cad.mesh().vertices);
-  const Setup setup = makeSetup(config, box, &result.sweep_length);
+  Setup setup = makeSetup(config, box, &result.sweep_length);
+  if (config.support) {
+    placeSupport(config, cad.mesh().vertices, &setup);
+    result.support_plane << setup.support_normal, setup.support_offset;
+  }
 
   const int width = config.width;
   const auto pixels = static_cast<long long>(width) * config.height;

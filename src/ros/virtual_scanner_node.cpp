@@ -129,6 +129,7 @@ ScannerNodeConfig loadConfig(const ros::NodeHandle& pnh, std::vector<std::string
   pnh.param("fill_ratio", scanner.fill_ratio, scanner.fill_ratio);
   pnh.param("noise_ratio", scanner.noise_ratio, scanner.noise_ratio);
   pnh.param("dropout", scanner.dropout_probability, scanner.dropout_probability);
+  pnh.param("support", scanner.support, scanner.support);
   readDefects(pnh, &config, errors);
   readPose(pnh, &config, errors);
   if (config.model.empty()) {

@@ -4,7 +4,7 @@
 // virtual_scan --cad FILE [--cad-scale S] --out SCAN.pcd|SCAN.ply [--truth T.txt] [--seed N]
 //              [--width W] [--height H] [--fov DEG] [--min-range M] [--max-range M] [--fill F]
 //              [--line-scanner] [--sweep M] [--noise SIGMA | --noise-ratio R] [--dropout P]
-//              [--outliers F] [--max-incidence DEG] [--defect x,y,z,radius,depth]...
+//              [--outliers F] [--max-incidence DEG] [--defect x,y,z,radius,depth]... [--table]
 //
 // Scans a CAD mesh with the virtual range sensor (virtual_scanner.h) at a random pose and writes
 // the scan in the sensor frame, in metres: a .pcd keeps the organized grid (WIDTH × HEIGHT, NaN
@@ -12,7 +12,8 @@
 // writes T_cad_scan as four lines of four numbers. Lengths are metres after --cad-scale; defect
 // centres are in the CAD frame and are moved onto the closest point of the CAD surface. Exit
 // status 0 on success, 2 with one line on stderr on bad arguments, an unusable mesh, a scan that
-// measured nothing or a write failure.
+// measured nothing or a write failure. --table puts the part on a table that the sensor sees
+// around it (VirtualScannerConfig::support).
 
 #include <cctype>
 #include <cstdint>
@@ -38,7 +39,7 @@ constexpr char kUsage[] =
     "usage: virtual_scan --cad FILE [--cad-scale S] --out SCAN.pcd|SCAN.ply [--truth T.txt] "
     "[--seed N] [--width W] [--height H] [--fov DEG] [--min-range M] [--max-range M] [--fill F] "
     "[--line-scanner] [--sweep M] [--noise SIGMA | --noise-ratio R] [--dropout P] [--outliers F] "
-    "[--max-incidence DEG] [--defect x,y,z,radius,depth]...";
+    "[--max-incidence DEG] [--defect x,y,z,radius,depth]... [--table]";
 
 struct Options {
   std::string cad;
@@ -141,6 +142,10 @@ std::string parseArguments(int argc, char** argv, Options& options) {
     }
     if (arg == "--line-scanner") {
       options.config.type = ScannerType::kLineScanner;
+      continue;
+    }
+    if (arg == "--table") {
+      options.config.support = true;
       continue;
     }
     const auto setter = setters.find(arg);
