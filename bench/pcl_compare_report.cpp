@@ -148,6 +148,7 @@ double medianStage(const std::vector<const CaseRecord*>& rows, const std::string
 
 const std::vector<std::string>& oursStages() {
   static const std::vector<std::string> stages = {"clean",
+                                                  "supports",
                                                   "descriptors",
                                                   "features",
                                                   "correspondences",

@@ -19,7 +19,8 @@ namespace freeform_inspection {
 /// A named, writable field of a PipelineConfig.
 struct ConfigField {
   std::string key;  ///< "<section>/<name>", as nested in config/default.yaml
-  std::variant<double*, std::size_t*, int*, bool*> target;  ///< where the value goes
+  /// where the value goes (a list of numbers for std::vector<double>)
+  std::variant<double*, std::size_t*, int*, bool*, std::vector<double>*> target;
 };
 
 /// @brief The fields of `config`, pointing into it. The pointers live as long as `config`.

@@ -19,12 +19,14 @@
 #include "freeform_inspection/icp.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/scan_cleaning.h"
+#include "freeform_inspection/support_plane.h"
 #include "freeform_inspection/types.h"
 
 /// @file pipeline.h
 /// inspect(): the whole job on one scan, the same call for the CLI and the node. It runs the
-/// stages in order (clean → descriptors → features → correspondences → global registration →
-/// ICP → deviation → verdict), stops at the first stage that is not ok and reports why.
+/// stages in order (clean → supports → descriptors → features → correspondences → global
+/// registration → ICP → deviation → verdict), stops at the first stage that is not ok and reports
+/// why.
 
 namespace freeform_inspection {
 
@@ -40,6 +42,7 @@ struct VerdictConfig {
 /// Configuration of the whole pipeline, nested like config/default.yaml.
 struct PipelineConfig {
   InputConfig input;
+  SupportConfig support;
   DescriptorConfig descriptor;
   FeatureConfig features;
   CorrespondenceConfig correspondence;
@@ -68,6 +71,8 @@ const char* toString(Verdict verdict);            ///< "PASS" | "FAIL" | "NOT_EV
 struct InspectionCounts {
   std::size_t scan_points = 0;      ///< finite scan points used
   std::size_t non_finite = 0;       ///< NaN/inf points removed
+  std::size_t cropped = 0;          ///< points outside input.crop_box, removed
+  std::size_t support_points = 0;   ///< points removed with the supports (support_plane.h)
   std::size_t scan_faces = 0;       ///< triangles of the scan surface (given, or from the grid
                                     ///< of an organized scan); 0 for an unorganized cloud
   std::size_t cad_vertices = 0;     ///< model vertices

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "freeform_inspection/types.h"
 
@@ -19,7 +20,17 @@ struct InputConfig {
   double max_extent_ratio = 50.0;     ///< scan/CAD diagonal ratio beyond which units are suspect
   double min_thickness_ratio = 1e-3;  ///< principal spread (2nd or 3rd over 1st) below which the
                                       ///< scan is collinear or planar and cannot fix a pose
+  /// [m] the box a scan is cropped to before anything else, in the scan's own frame:
+  /// {x_min, y_min, z_min, x_max, y_max, z_max}; empty keeps every point. For what a fixed
+  /// scanner always sees around the part (fixture, clamps, the robot's gripper).
+  std::vector<double> crop_box;
 };
+
+/// @brief The points of `scan` outside `box` ({x_min, y_min, z_min, x_max, y_max, z_max}, the
+/// scan's frame) made NaN, so cleanScan() drops them with the faces through them and an
+/// organized scan keeps its grid; `cropped` counts them (NaN points already there are not).
+/// An empty box changes nothing.
+Scan cropToBox(const Scan& scan, const std::vector<double>& box, std::size_t* cropped);
 
 /// Result of cleaning.
 struct CleanScanResult {

@@ -22,10 +22,10 @@ void flatten(const YAML::Node& node,
     const std::string key = prefix + entry.first.as<std::string>();
     if (entry.second.IsMap()) {
       flatten(entry.second, key + "/", leaves, errors);
-    } else if (entry.second.IsScalar()) {
-      (*leaves)[key] = entry.second;
+    } else if (entry.second.IsScalar() || entry.second.IsSequence()) {
+      (*leaves)[key] = entry.second;  // whether a list is wanted there is the field's to say
     } else {
-      errors->push_back("'" + key + "' must be a scalar");
+      errors->push_back("'" + key + "' must be a value or a list");
     }
   }
 }
@@ -35,6 +35,12 @@ struct Assign {
   void operator()(double* target) const { *target = value.as<double>(); }
   void operator()(bool* target) const { *target = value.as<bool>(); }
   void operator()(int* target) const { *target = value.as<int>(); }
+  void operator()(std::vector<double>* target) const {
+    if (!value.IsSequence()) {
+      throw YAML::BadConversion(value.Mark());
+    }
+    *target = value.as<std::vector<double>>();
+  }
   void operator()(std::size_t* target) const {
     const long long parsed = value.as<long long>();
     if (parsed < 0) {
@@ -69,7 +75,7 @@ ConfigLoadResult parsePipelineConfig(const std::string& yaml_text) {
       std::visit(Assign{leaf->second}, field.target);
     } catch (const YAML::Exception&) {
       errors.push_back("'" + field.key +
-                       "' has a value of the wrong type: " + leaf->second.as<std::string>());
+                       "' has a value of the wrong type: " + YAML::Dump(leaf->second));
     }
     leaves.erase(leaf);
   }

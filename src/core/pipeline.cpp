@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "pipeline_internal.h"
@@ -44,6 +45,21 @@ CleanScanResult cleanWithGridFaces(const Scan& scan,
   meshed.faces =
       triangulateOrganizedGrid(scan.points, scan.width, scan.height, OrganizedMeshConfig());
   return cleanScan(meshed, model_bounds, config);
+}
+
+// The cleaned scan without the points of its supports (faces through them dropped), checked
+// again like any scan: what is left must still fix a pose.
+CleanScanResult withoutSupports(const Scan& cleaned,
+                                const SupportResult& supports,
+                                const BoundingBox& model_bounds,
+                                const InputConfig& config) {
+  Scan kept = cleaned;
+  for (std::size_t i = 0; i < kept.points.size(); ++i) {
+    if (supports.on_support[i] != 0) {
+      kept.points[i] = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  return cleanScan(kept, model_bounds, config);
 }
 
 // Stage timings, and the caller's progress callback between stages.
@@ -716,13 +732,39 @@ void runStages(const Model& model,
                const ProgressCallback& progress,
                Stopwatch* watch,
                InspectionResult* result) {
-  const CleanScanResult cleaned = cleanWithGridFaces(scan, model.bounds(), config.input);
+  std::size_t cropped = 0;
+  CleanScanResult cleaned = cleanWithGridFaces(
+      cropToBox(scan, config.input.crop_box, &cropped), model.bounds(), config.input);
   watch->lap("clean");
-  result->counts.scan_points = cleaned.scan.points.size();
-  result->counts.non_finite = cleaned.non_finite;
-  result->counts.scan_faces = cleaned.scan.faces.size();
+  result->counts.cropped = cropped;
+  result->counts.non_finite = cleaned.non_finite - cropped;
   result->status = cleaned.status;
-  if (!result->status.ok() || !watch->proceed("descriptors", 0.02)) {
+  if (!result->status.ok() || !watch->proceed("supports", 0.01)) {
+    return;
+  }
+  // The scan's own noise sizes the support's band here, the cloud curvature fit below, and
+  // bounds the residual of an acceptable pose later (registerScan).
+  const double r_1 = model.descriptors().radii.front();
+  result->scan_noise = estimateScanNoise(cleaned.scan.points, 2.0 * r_1);
+  const SupportResult supports = findSupports(
+      cleaned.scan.points, result->scan_noise, model.bounds().diagonal(), config.support);
+  if (supports.removed > 0) {
+    cleaned = withoutSupports(cleaned.scan, supports, model.bounds(), config.input);
+    result->counts.support_points = supports.removed;
+    const std::vector<std::string> found = supports.describe();
+    result->warnings.insert(result->warnings.end(), found.begin(), found.end());
+    result->status = cleaned.status;
+    if (!result->status.ok()) {
+      result->status.message = "after removing the support (" + std::to_string(supports.removed) +
+                               " points): " + result->status.message;
+      return;
+    }
+    result->scan_noise = estimateScanNoise(cleaned.scan.points, 2.0 * r_1);
+  }
+  watch->lap("supports");
+  result->counts.scan_points = cleaned.scan.points.size();
+  result->counts.scan_faces = cleaned.scan.faces.size();
+  if (!watch->proceed("descriptors", 0.02)) {
     return;
   }
   // The CAD's radii, so a partial scan gets the same descriptor as the full part.
@@ -733,10 +775,6 @@ void runStages(const Model& model,
   const bool range_image = scan.faces.empty() && scan.isOrganized();
   const ViewHints hints =
       range_image && scan.normals.empty() ? rangeImageViewHints(cleaned.scan) : ViewHints();
-  // The scan's own noise sizes the cloud curvature fit here and bounds the residual of an
-  // acceptable pose later (registerScan).
-  result->scan_noise =
-      estimateScanNoise(cleaned.scan.points, 2.0 * model.descriptors().radii.front());
   const DescriptorResult descriptors =
       computeDescriptors(cleaned.scan.points,
                          range_image ? Triangles() : cleaned.scan.faces,
@@ -802,7 +840,19 @@ std::vector<std::string> validate(const PipelineConfig& config) {
   if (!(input.min_thickness_ratio >= 0.0 && input.min_thickness_ratio < 1.0)) {
     errors.push_back("input.min_thickness_ratio must be in [0, 1)");
   }
-  for (const auto& list : {validate(config.descriptor),
+  const std::vector<double>& box = input.crop_box;
+  const bool box_ok =
+      box.empty() ||
+      (box.size() == 6 &&
+       std::all_of(box.begin(), box.end(), [](double v) { return std::isfinite(v); }) &&
+       box[0] < box[3] && box[1] < box[4] && box[2] < box[5]);
+  if (!box_ok) {
+    errors.push_back(
+        "input.crop_box must be empty or six finite numbers [x_min, y_min, z_min, x_max, y_max, "
+        "z_max] with each minimum below its maximum");
+  }
+  for (const auto& list : {validate(config.support),
+                           validate(config.descriptor),
                            validate(config.features),
                            validate(config.correspondence),
                            validate(config.registration),

@@ -3,6 +3,7 @@
 #include "freeform_inspection/scan_cleaning.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -106,6 +107,23 @@ Status checkShape(const Points& points, const InputConfig& config) {
 }
 
 }  // namespace
+
+Scan cropToBox(const Scan& scan, const std::vector<double>& box, std::size_t* cropped) {
+  *cropped = 0;
+  if (box.size() != 6) {
+    return scan;
+  }
+  const Eigen::Vector3d low(box[0], box[1], box[2]);
+  const Eigen::Vector3d high(box[3], box[4], box[5]);
+  Scan inside = scan;
+  for (Eigen::Vector3d& p : inside.points) {
+    if (p.allFinite() && !((p.array() >= low.array()).all() && (p.array() <= high.array()).all())) {
+      p = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+      ++*cropped;
+    }
+  }
+  return inside;
+}
 
 CleanScanResult cleanScan(const Scan& scan,
                           const BoundingBox& model_bounds,

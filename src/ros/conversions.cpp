@@ -148,6 +148,8 @@ freeform_inspection::InspectionReport toReport(const fi::InspectionResult& resul
   report.rmse = result.rmse;
   report.fitness = result.fitness;
   report.counts.scan_points = static_cast<std::uint32_t>(result.counts.scan_points);
+  report.counts.cropped = static_cast<std::uint32_t>(result.counts.cropped);
+  report.counts.support_points = static_cast<std::uint32_t>(result.counts.support_points);
   report.counts.scan_faces = static_cast<std::uint32_t>(result.counts.scan_faces);
   report.counts.cad_vertices = static_cast<std::uint32_t>(result.counts.cad_vertices);
   report.counts.features = static_cast<std::uint32_t>(result.counts.features);

@@ -72,8 +72,12 @@ void printReport(const InspectionReport& report) {
   const auto& d = report.deviation;
   std::cout << "verdict:       " << statusName(report.status) << " (" << report.message << ")\n"
             << "registration:  " << report.registration_status << ", rmse " << mm(report.rmse)
-            << ", fitness " << report.fitness << "\n"
-            << "tolerance:     " << mm(report.tolerance_lower) << " .. "
+            << ", fitness " << report.fitness << "\n";
+  if (report.counts.support_points > 0) {
+    std::cout << "support:       " << report.counts.support_points
+              << " points of the table under the part removed before the registration\n";
+  }
+  std::cout << "tolerance:     " << mm(report.tolerance_lower) << " .. "
             << mm(report.tolerance_upper) << "\n"
             << "deviation:     mean " << mm(d.mean) << ", std " << mm(d.std) << ", p5 " << mm(d.p5)
             << ", p95 " << mm(d.p95) << ", min " << mm(d.min) << ", max " << mm(d.max) << "\n"

@@ -4,6 +4,8 @@
 
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <ros/package.h>
 #include <ros/param.h>
@@ -38,6 +40,29 @@ struct ReadParam {
   void operator()(double* target) const { pnh.param(key, *target, *target); }
   void operator()(bool* target) const { pnh.param(key, *target, *target); }
   void operator()(int* target) const { pnh.param(key, *target, *target); }
+  void operator()(std::vector<double>* target) const {
+    // A list of numbers (integers are taken as numbers too: [0, 0, 0, 1, 1, 1] is a valid box).
+    XmlRpc::XmlRpcValue list;
+    if (!pnh.getParam(key, list)) {
+      return;
+    }
+    if (list.getType() != XmlRpc::XmlRpcValue::TypeArray) {
+      errors->push_back("~" + key + " must be a list of numbers");
+      return;
+    }
+    std::vector<double> values;
+    for (int i = 0; i < list.size(); ++i) {
+      if (list[i].getType() == XmlRpc::XmlRpcValue::TypeDouble) {
+        values.push_back(static_cast<double>(list[i]));
+      } else if (list[i].getType() == XmlRpc::XmlRpcValue::TypeInt) {
+        values.push_back(static_cast<int>(list[i]));
+      } else {
+        errors->push_back("~" + key + " must be a list of numbers");
+        return;
+      }
+    }
+    *target = std::move(values);
+  }
   void operator()(std::size_t* target) const {
     int value = static_cast<int>(*target);
     pnh.param(key, value, value);

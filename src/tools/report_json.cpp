@@ -87,6 +87,8 @@ nlohmann::ordered_json defectsJson(const std::vector<DefectRegion>& defects) {
 nlohmann::ordered_json countsJson(const InspectionCounts& c) {
   return {{"scan_points", c.scan_points},
           {"non_finite", c.non_finite},
+          {"cropped", c.cropped},
+          {"support_points", c.support_points},
           {"scan_faces", c.scan_faces},
           {"cad_vertices", c.cad_vertices},
           {"features", c.features},

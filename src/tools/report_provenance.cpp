@@ -14,6 +14,13 @@
 namespace freeform_inspection {
 namespace {
 
+// The shortest text that reads back to the same double.
+std::string numberText(double value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof(text), value, std::chars_format::general).ptr;
+  return std::string(text, end);
+}
+
 std::string valueText(const ConfigField& field) {
   return std::visit(
       [](const auto* target) -> std::string {
@@ -21,10 +28,13 @@ std::string valueText(const ConfigField& field) {
         if constexpr (std::is_same_v<T, bool>) {
           return *target ? "true" : "false";
         } else if constexpr (std::is_same_v<T, double>) {
-          char text[32];  // shortest text that reads back to the same double
-          const auto end =
-              std::to_chars(text, text + sizeof(text), *target, std::chars_format::general).ptr;
-          return std::string(text, end);
+          return numberText(*target);
+        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+          std::string list = "[";
+          for (std::size_t i = 0; i < target->size(); ++i) {
+            list += (i == 0 ? "" : ", ") + numberText((*target)[i]);
+          }
+          return list + "]";
         } else {
           return std::to_string(*target);
         }

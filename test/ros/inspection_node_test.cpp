@@ -214,6 +214,21 @@ TEST(InspectionNode, RefusesBadRequestsWithReasonsAndKeepsServing) {
   EXPECT_EQ(good.report.registration_status, "ok") << "node stopped serving after bad input";
 }
 
+TEST(InspectionNode, CropBoxFromTheParameterServerDropsWhatLiesOutside) {
+  // The .test file sets ~input/crop_box to ±1000 m as a list of integers: 500 points of clutter
+  // at 1.5 km go before anything else, counted, and the sample scan still passes.
+  freeform_inspection::Points points =
+      freeform_inspection::loadScan(param("sample_scan"), 1.0).scan.points;
+  for (int i = 0; i < 500; ++i) {
+    points.emplace_back(1500.0 + 0.001 * i, 1500.0, 1500.0);
+  }
+  const auto response = callInspect(cloudRequest(toCloud(points, "scanner")));
+  EXPECT_EQ(response.status, Inspect::Response::PASS) << response.message;
+  EXPECT_EQ(response.report.counts.cropped, 500u);
+  EXPECT_EQ(response.report.counts.scan_points, points.size() - 500);
+  EXPECT_EQ(response.report.deviation.n_invalid, 0u);
+}
+
 TEST(InspectionNode, OrganizedCloudWithNanPixelsIsReadOnItsGrid) {
   // A range image (height > 1) with NaN where the rays miss: the node passes the grid on, the
   // pipeline triangulates it, removes the NaN pixels and counts them.

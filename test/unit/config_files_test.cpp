@@ -58,6 +58,29 @@ TEST(ConfigFiles, DefaultYamlStatesEveryFieldWithTheStructDefault) {
   }
 }
 
+TEST(ParsePipelineConfig, CropBoxIsAListOfSixNumbersWithEachMinimumBelowItsMaximum) {
+  const ConfigLoadResult loaded =
+      parsePipelineConfig("input: {crop_box: [-0.2, -0.2, 0.3, 0.2, 0.2, 1]}\n");
+  ASSERT_TRUE(loaded.status.ok()) << loaded.status.message;
+  EXPECT_EQ(loaded.config.input.crop_box, (std::vector<double>{-0.2, -0.2, 0.3, 0.2, 0.2, 1.0}));
+  const ConfigLoadResult scalar = parsePipelineConfig("input: {crop_box: 0.5}\n");
+  EXPECT_NE(scalar.status.message.find("'input/crop_box' has a value of the wrong type"),
+            std::string::npos)
+      << scalar.status.message;
+  const ConfigLoadResult list_for_number = parsePipelineConfig("input: {max_points: [1, 2]}\n");
+  EXPECT_NE(list_for_number.status.message.find("'input/max_points' has a value of the wrong"),
+            std::string::npos)
+      << list_for_number.status.message;
+  for (const char* bad : {"input: {crop_box: [0, 0, 0, 1, 1]}\n",
+                          "input: {crop_box: [0, 0, 0, 1, -1, 1]}\n",
+                          "input: {crop_box: [0, 0, 0, 1, 1, .nan]}\n"}) {
+    const ConfigLoadResult refused = parsePipelineConfig(bad);
+    EXPECT_EQ(refused.status.code, StatusCode::kInvalidInput) << bad;
+    EXPECT_NE(refused.status.message.find("input.crop_box"), std::string::npos)
+        << bad << ": " << refused.status.message;
+  }
+}
+
 TEST(ParsePipelineConfig, OverridesOnlyTheGivenKeys) {
   const ConfigLoadResult loaded = parsePipelineConfig("tolerance: {upper: 0.0005}\n");
   ASSERT_TRUE(loaded.status.ok()) << loaded.status.message;

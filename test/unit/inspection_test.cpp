@@ -288,6 +288,7 @@ TEST(Inspection, ProgressReportsEveryStageAndCancelStopsBeforeOne) {
   const InspectionResult full = inspect(blade(), truth.scan, PipelineConfig(), record);
   ASSERT_EQ(full.registration, RegistrationStatus::kOk) << full.status.message;
   const std::vector<std::string> all = {"clean",
+                                        "supports",
                                         "descriptors",
                                         "features",
                                         "correspondences",

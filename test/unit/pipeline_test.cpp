@@ -38,9 +38,10 @@ TEST(Inspect, FeaturelessScanFailsWithAReasonNeverAnIdentityPose) {
   EXPECT_EQ(result.counts.scan_points, 400u);
   EXPECT_EQ(result.counts.cad_vertices, 8u);
   EXPECT_EQ(result.counts.scan_faces, 0u);
-  ASSERT_GE(result.timings.size(), 3u);
+  ASSERT_GE(result.timings.size(), 4u);
   EXPECT_EQ(result.timings[0].stage, "clean");
-  EXPECT_EQ(result.timings[1].stage, "descriptors");
+  EXPECT_EQ(result.timings[1].stage, "supports");
+  EXPECT_EQ(result.timings[2].stage, "descriptors");
   EXPECT_EQ(result.timings.back().stage, "total");
   EXPECT_GE(result.timings.back().seconds, result.timings.front().seconds);
 }
@@ -68,7 +69,7 @@ TEST(Inspect, OrganizedRangeImageWithHolesRunsThroughTheDescriptors) {
   EXPECT_EQ(result.counts.scan_points, scan.points.size() - holes);
   // Two triangles per fully finite grid cell: far more faces than points means the grid was used.
   EXPECT_GT(result.counts.scan_faces, 3 * result.counts.scan_points / 2);
-  EXPECT_EQ(result.timings[1].stage, "descriptors");
+  EXPECT_EQ(result.timings[2].stage, "descriptors");
 }
 
 TEST(Inspect, StopsAtTheCleaningStageWithItsStatus) {
@@ -77,6 +78,27 @@ TEST(Inspect, StopsAtTheCleaningStageWithItsStatus) {
   const InspectionResult result = inspect(boxModel(), scan, PipelineConfig());
   EXPECT_EQ(result.status.code, StatusCode::kDegenerateInput);
   EXPECT_EQ(result.verdict, Verdict::kNotEvaluated);
+}
+
+TEST(Inspect, TableWithNothingOnItIsRefusedNamingTheSupport) {
+  // A 0.5 m table, wider than the 123 mm box, and two stray points above it: the table goes as a
+  // support and what is left cannot fix a pose; the message says both.
+  Scan scan;
+  scan.points = analytic::samplePlane(0.5, 5000, 4).points;
+  scan.points.emplace_back(0.01, 0.02, 0.05);
+  scan.points.emplace_back(-0.03, 0.01, 0.08);
+  const InspectionResult result = inspect(boxModel(), scan, PipelineConfig());
+  EXPECT_EQ(result.status.code, StatusCode::kDegenerateInput);
+  EXPECT_NE(result.status.message.find("after removing the support (5000 points)"),
+            std::string::npos)
+      << result.status.message;
+  EXPECT_NE(result.status.message.find("2 finite points"), std::string::npos)
+      << result.status.message;
+  EXPECT_EQ(result.counts.support_points, 5000u);
+  EXPECT_EQ(result.registration, RegistrationStatus::kFailed);
+  EXPECT_EQ(result.verdict, Verdict::kNotEvaluated);
+  ASSERT_FALSE(result.warnings.empty());
+  EXPECT_NE(result.warnings.front().find("support plane"), std::string::npos);
 }
 
 TEST(Inspect, InvalidConfigurationIsACallerErrorAndThrows) {

@@ -136,5 +136,32 @@ TEST(CleanScan, FaceIndexOutOfRangeIsInvalidInput) {
   EXPECT_EQ(cleanScan(scan, modelBounds(), InputConfig()).status.code, StatusCode::kInvalidInput);
 }
 
+TEST(CropToBox, DropsWhatLiesOutsideAndCountsItKeepingTheGrid) {
+  Scan scan;
+  scan.width = 3;
+  scan.height = 2;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  scan.points = {
+      {0, 0, 0}, {0.2, 0, 0}, {nan, 0, 0}, {0.05, -0.05, 0.09}, {0, 0, -0.2}, {0, 0, 0.1}};
+  std::size_t cropped = 0;
+  const Scan inside = cropToBox(scan, {-0.1, -0.1, -0.1, 0.1, 0.1, 0.1}, &cropped);
+  EXPECT_EQ(cropped, 2u);  // x = 0.2 and z = -0.2; the NaN was not a point, z = 0.1 is on the box
+  ASSERT_EQ(inside.points.size(), 6u);
+  EXPECT_EQ(inside.width, 3);
+  EXPECT_EQ(inside.height, 2);
+  for (const std::size_t kept : {0u, 3u, 5u}) {
+    EXPECT_EQ(inside.points[kept], scan.points[kept]) << kept;
+  }
+  for (const std::size_t gone : {1u, 2u, 4u}) {
+    EXPECT_FALSE(inside.points[gone].allFinite()) << gone;
+  }
+  const CleanScanResult cleaned = cleanScan(inside, modelBounds(), InputConfig());
+  EXPECT_EQ(cleaned.non_finite, 3u);  // the pipeline subtracts the cropped ones
+  // No box: nothing changes.
+  const Scan same = cropToBox(scan, {}, &cropped);
+  EXPECT_EQ(cropped, 0u);
+  EXPECT_FALSE(same.points[1].hasNaN());
+}
+
 }  // namespace
 }  // namespace freeform_inspection
