@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "freeform_inspection/mesh.h"
 #include "freeform_inspection/mesh_orientation.h"
 #include "freeform_inspection/mesh_query.h"
+#include "freeform_inspection/model_cache.h"
 #include "freeform_inspection/symmetry.h"
 #include "freeform_inspection/types.h"
 
@@ -25,16 +27,22 @@ namespace freeform_inspection {
 /// @return nothing for any other name (units are never guessed).
 std::optional<double> unitScale(const std::string& units);
 
+/// Where a Model may find what it would otherwise compute: the entry stored under its key, or
+/// nothing (model_cache.h).
+using ModelCacheLookup = std::function<std::optional<ModelCacheEntry>(const std::string& key)>;
+
 /// A loaded CAD model and everything computed once about it (descriptors at the kernel radii
 /// derived from its size). Immutable once built; share it between inspections.
 class Model {
  public:
-  /// @brief Takes a mesh already in metres and computes its descriptors. Use loadModel() to read
-  /// one from a file.
+  /// @brief Takes a mesh already in metres and computes its descriptors and symmetries, or takes
+  /// them from `cached` when it has an entry for the model's key. Use loadModel() to read one
+  /// from a file.
   Model(TriangleMesh mesh,
         std::string id,
         std::string source,
-        const DescriptorConfig& descriptor_config = DescriptorConfig());
+        const DescriptorConfig& descriptor_config = DescriptorConfig(),
+        const ModelCacheLookup& cached = ModelCacheLookup());
 
   const TriangleMesh& mesh() const { return mesh_; }
   const BoundingBox& bounds() const { return bounds_; }
@@ -62,6 +70,8 @@ class Model {
   const std::vector<std::uint8_t>& faceBorderEdges() const { return face_border_edges_; }
   /// How the mesh's winding was made consistent and outward on construction.
   const OrientationResult& orientation() const { return orientation_; }
+  /// True when the descriptors and symmetries came from a cache entry instead of being computed.
+  bool fromCache() const { return from_cache_; }
 
  private:
   OrientationResult orientation_;  // before mesh_: filled while mesh_ is oriented
@@ -76,6 +86,7 @@ class Model {
   std::unique_ptr<MeshQuery> query_;
   std::vector<Symmetry> symmetries_;
   std::vector<std::uint8_t> face_border_edges_;
+  bool from_cache_ = false;
 };
 
 /// @brief Hash of the descriptor settings alone: equal keys mean the same descriptors.
@@ -92,9 +103,13 @@ struct ModelLoadResult {
 /// at least one face, a non-zero extent, descriptors computable. Open or non-manifold meshes
 /// load with a warning.
 /// @param scale [m per file unit], e.g. from unitScale("mm").
+/// @param cache_directory where the descriptors and symmetries are kept between loads
+/// (model_cache.h); empty: none. A cache that cannot be read or written costs a warning, never
+/// the load.
 ModelLoadResult loadModel(const std::string& path,
                           double scale,
                           const std::string& id,
-                          const DescriptorConfig& descriptor_config = DescriptorConfig());
+                          const DescriptorConfig& descriptor_config = DescriptorConfig(),
+                          const std::string& cache_directory = "");
 
 }  // namespace freeform_inspection

@@ -100,18 +100,27 @@ std::optional<double> unitScale(const std::string& units) {
 Model::Model(TriangleMesh mesh,
              std::string id,
              std::string source,
-             const DescriptorConfig& descriptor_config)
+             const DescriptorConfig& descriptor_config,
+             const ModelCacheLookup& cached)
     : mesh_(orientedOutward(std::move(mesh), &orientation_)),
       bounds_(computeBoundingBox(mesh_.vertices)),
       topology_(analyzeTopology(mesh_)),
       id_(std::move(id)),
       source_(std::move(source)),
-      descriptors_(describeModel(mesh_, bounds_.diagonal(), descriptor_config)),
       descriptor_key_(descriptorCacheKey(mesh_, descriptor_config)),
       descriptor_config_(descriptor_config),
       query_(std::make_unique<MeshQuery>(mesh_)),
-      symmetries_(findSymmetries(descriptors_, *query_, cellSize(), bounds_.diagonal())),
-      face_border_edges_(borderEdgeMasks(mesh_)) {}
+      face_border_edges_(borderEdgeMasks(mesh_)) {
+  std::optional<ModelCacheEntry> entry = cached ? cached(descriptor_key_) : std::nullopt;
+  if (entry) {
+    descriptors_ = std::move(entry->descriptors);
+    symmetries_ = std::move(entry->symmetries);
+    from_cache_ = true;
+    return;
+  }
+  descriptors_ = describeModel(mesh_, bounds_.diagonal(), descriptor_config);
+  symmetries_ = findSymmetries(descriptors_, *query_, cellSize(), bounds_.diagonal());
+}
 
 std::string descriptorSettingsKey(const DescriptorConfig& config) {
   Fnv1a hash;
@@ -127,7 +136,8 @@ double Model::cellSize() const {
 ModelLoadResult loadModel(const std::string& path,
                           double scale,
                           const std::string& id,
-                          const DescriptorConfig& descriptor_config) {
+                          const DescriptorConfig& descriptor_config,
+                          const std::string& cache_directory) {
   ModelLoadResult result;
   MeshLoadResult loaded = loadMesh(path, scale);
   result.warnings = std::move(loaded.warnings);
@@ -140,7 +150,20 @@ ModelLoadResult loadModel(const std::string& path,
         Status::failure(StatusCode::kDegenerateInput, "CAD model '" + path + "' has zero extent");
     return result;
   }
-  auto model = std::make_shared<const Model>(std::move(loaded.mesh), id, path, descriptor_config);
+  // A cache file that exists but cannot be used is said; a missing one is the first load.
+  std::string cache_problem;
+  ModelCacheLookup lookup;
+  if (!cache_directory.empty()) {
+    lookup = [&](const std::string& key) {
+      ModelCacheRead read = readModelCache(cache_directory, key);
+      if (!read.entry && !read.missing) {
+        cache_problem = read.status.message;
+      }
+      return std::move(read.entry);
+    };
+  }
+  auto model =
+      std::make_shared<const Model>(std::move(loaded.mesh), id, path, descriptor_config, lookup);
   if (model->topology().area <= 0.0) {
     result.status = Status::failure(StatusCode::kDegenerateInput,
                                     "CAD model '" + path + "' has zero surface area");
@@ -169,6 +192,16 @@ ModelLoadResult loadModel(const std::string& path,
                               " boundary, " + std::to_string(topology.non_manifold_edges) +
                               " non-manifold, " + std::to_string(topology.misoriented_edges) +
                               " misoriented edges): deviation signs may be unreliable");
+  }
+  if (!cache_problem.empty()) {
+    result.warnings.push_back(cache_problem + ": computed again");
+  }
+  if (!cache_directory.empty() && !model->fromCache()) {
+    const Status written = writeModelCache(
+        cache_directory, model->descriptorKey(), model->descriptors(), model->symmetries());
+    if (!written.ok()) {
+      result.warnings.push_back(written.message + " (the model is used, not cached)");
+    }
   }
   result.model = std::move(model);
   return result;

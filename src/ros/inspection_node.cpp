@@ -250,7 +250,8 @@ std::string InspectionNode::installModel(const std::string& uri,
   if (path.empty()) {
     return "cannot resolve model URL '" + uri + "'";
   }
-  fi::ModelLoadResult loaded = fi::loadModel(path, *scale, id, config_.pipeline.descriptor);
+  fi::ModelLoadResult loaded =
+      fi::loadModel(path, *scale, id, config_.pipeline.descriptor, config_.model_cache_dir);
   for (const auto& warning : loaded.warnings) {
     ROS_WARN_STREAM(warning);
   }

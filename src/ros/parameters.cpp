@@ -2,6 +2,7 @@
 // Copyright 2026 The freeform_inspection authors
 #include "parameters.h"
 
+#include <cstdlib>
 #include <set>
 #include <string>
 #include <utility>
@@ -30,7 +31,8 @@ const std::vector<std::string> kNodeKeys = {"model",
                                             "fixed_frame",
                                             "tf_timeout",
                                             "max_model_mb",
-                                            "report_dir"};
+                                            "report_dir",
+                                            "model_cache_dir"};
 
 struct ReadParam {
   const ros::NodeHandle& pnh;
@@ -87,6 +89,20 @@ void warnUnknownKeys(const ros::NodeHandle& pnh,
   }
 }
 
+// $ROS_HOME/freeform_inspection/model_cache, ROS_HOME being ~/.ros unless set; empty without
+// either variable.
+std::string defaultModelCacheDir() {
+  const char* ros_home = std::getenv("ROS_HOME");
+  if (ros_home != nullptr && ros_home[0] != '\0') {
+    return std::string(ros_home) + "/freeform_inspection/model_cache";
+  }
+  const char* home = std::getenv("HOME");
+  if (home != nullptr && home[0] != '\0') {
+    return std::string(home) + "/.ros/freeform_inspection/model_cache";
+  }
+  return "";
+}
+
 }  // namespace
 
 NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
@@ -105,6 +121,7 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   pnh.param("tf_timeout", config.tf_timeout, config.tf_timeout);
   pnh.param("max_model_mb", config.max_model_mb, config.max_model_mb);
   pnh.param("report_dir", config.report_dir, config.report_dir);
+  pnh.param("model_cache_dir", config.model_cache_dir, defaultModelCacheDir());
   std::set<std::string> known(kNodeKeys.begin(), kNodeKeys.end());
   for (const auto& field : fi::configFields(config.pipeline)) {
     std::visit(ReadParam{pnh, field.key, &result.errors}, field.target);

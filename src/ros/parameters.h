@@ -32,6 +32,10 @@ struct NodeConfig {
   int max_model_mb = 500;  ///< ~load_model refuses larger CAD files [MiB]
   /// Each inspection's HTML report and deviation PLY are written here; empty: none are.
   std::string report_dir;
+  /// The models' descriptors and symmetries are kept here between loads (model_cache.h), so a
+  /// restart or a changeover back to a known part skips computing them; empty: no cache.
+  /// Default: $ROS_HOME/freeform_inspection/model_cache (ROS_HOME defaults to ~/.ros).
+  std::string model_cache_dir;
   freeform_inspection::PipelineConfig pipeline;  ///< ~input/*, ~tolerance/*
 };
 

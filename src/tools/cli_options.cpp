@@ -25,7 +25,8 @@ std::string apply(const std::string& flag, const std::string& value, CliOptions*
                                                      {"--config", &options->config_path},
                                                      {"--report", &options->report_path},
                                                      {"--deviation", &options->deviation_path},
-                                                     {"--html", &options->html_path}};
+                                                     {"--html", &options->html_path},
+                                                     {"--model-cache", &options->model_cache}};
   if (const auto path = paths.find(flag); path != paths.end()) {
     *path->second = value;
     return "";
@@ -59,6 +60,10 @@ CliParseResult parseCliOptions(const std::vector<std::string>& args) {
       options.help = true;
       return {options, ""};
     }
+    if (args[i] == "--no-model-cache") {
+      options.no_model_cache = true;
+      continue;
+    }
     if (i + 1 >= args.size()) {
       return {std::nullopt, "option '" + args[i] + "' needs a value (see --help)"};
     }
@@ -78,15 +83,36 @@ std::string cliUsage() {
   return "usage: freeform_inspect --cad CAD.{stl,ply,obj} --scan SCAN.{ply,pcd,stl,obj}\n"
          "                        [--cad-scale S] [--scan-scale S] [--tolerance T]\n"
          "                        [--config FILE.yaml] [--report OUT.json] [--deviation OUT.ply]\n"
-         "                        [--html OUT.html]\n"
+         "                        [--html OUT.html] [--model-cache DIR | --no-model-cache]\n"
          "\n"
          "Registers the scan to the CAD model from any pose and prints one JSON object.\n"
          "--deviation writes the coloured deviation map (PLY, CAD frame) when the scan was\n"
          "registered; --html writes a self-contained report for people (docs/reports.md).\n"
          "Lengths are metres after scaling: --cad-scale 0.001 reads a CAD file in millimetres,\n"
          "--tolerance 0.0002 is a band of +-0.2 mm.\n"
+         "The CAD's descriptors and symmetries are kept between runs in --model-cache DIR\n"
+         "(default $XDG_CACHE_HOME or ~/.cache, under freeform_inspection/models), so the next\n"
+         "run on the same CAD skips computing them; --no-model-cache turns that off.\n"
          "Exit codes: 0 it ran (whatever the verdict), 2 bad input or usage (one line on "
          "stderr).\n";
+}
+
+std::string modelCacheDirectory(const CliOptions& options) {
+  if (options.no_model_cache) {
+    return "";
+  }
+  if (!options.model_cache.empty()) {
+    return options.model_cache;
+  }
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  if (xdg != nullptr && xdg[0] == '/') {  // the XDG rule: a relative value is ignored
+    return std::string(xdg) + "/freeform_inspection/models";
+  }
+  const char* home = std::getenv("HOME");
+  if (home != nullptr && home[0] != '\0') {
+    return std::string(home) + "/.cache/freeform_inspection/models";
+  }
+  return "";
 }
 
 }  // namespace freeform_inspection

@@ -19,6 +19,8 @@ struct CliOptions {
   std::string report_path;          ///< --report OUT.json
   std::string deviation_path;       ///< --deviation OUT.ply
   std::string html_path;            ///< --html OUT.html
+  std::string model_cache;          ///< --model-cache DIR (empty: the default directory)
+  bool no_model_cache = false;      ///< --no-model-cache
   bool help = false;                ///< --help
 };
 
@@ -33,5 +35,10 @@ CliParseResult parseCliOptions(const std::vector<std::string>& args);
 
 /// @brief The usage text printed by --help.
 std::string cliUsage();
+
+/// @brief Where the model's descriptors and symmetries are cached (model_cache.h): --model-cache,
+/// else $XDG_CACHE_HOME/freeform_inspection/models, else $HOME/.cache/freeform_inspection/models;
+/// empty (no cache) with --no-model-cache or when neither variable is set.
+std::string modelCacheDirectory(const CliOptions& options);
 
 }  // namespace freeform_inspection

@@ -117,8 +117,11 @@ int run(const fi::CliOptions& options) {
   if (!config.status.ok()) {
     return refuse(config.status.message);
   }
-  const fi::ModelLoadResult model =
-      fi::loadModel(options.cad_path, options.cad_scale, "cad", config.config.descriptor);
+  const fi::ModelLoadResult model = fi::loadModel(options.cad_path,
+                                                  options.cad_scale,
+                                                  "cad",
+                                                  config.config.descriptor,
+                                                  fi::modelCacheDirectory(options));
   if (!model.status.ok()) {
     return refuse(model.status.message);
   }

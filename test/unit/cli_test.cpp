@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "report_test_util.h"
 #include <Eigen/Geometry>
@@ -44,9 +45,13 @@ std::string slurp(const std::string& path) {
   return text.str();
 }
 
+// The model cache of a run that names none: the test's own, never the user's ~/.cache.
+const std::string kDefaultCache = temp("xdg_cache");
+
 CliRun runCli(const std::string& args) {
   const std::string err_path = temp("stderr.txt");
-  const std::string command = std::string(FREEFORM_CLI_PATH) + " " + args + " 2>" + err_path;
+  const std::string command = "XDG_CACHE_HOME=" + kDefaultCache + " " +
+                              std::string(FREEFORM_CLI_PATH) + " " + args + " 2>" + err_path;
   CliRun run;
   FILE* pipe = popen(command.c_str(), "r");
   char buffer[4096];
@@ -274,6 +279,54 @@ TEST(Cli, InvalidConfigExitsTwoNamingTheKey) {
   const CliRun run = runCli("--cad " + kBlade + " --scan " + kScan + " --config " + config);
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.err.find("tolerance/uper"), std::string::npos) << run.err;
+}
+
+// The CAD's descriptors and symmetries are kept between runs: the second run reads them and
+// prints the same JSON but for the timings; a damaged cache file is said in the warnings and
+// computed again; --no-model-cache writes none. A run that names no cache uses
+// $XDG_CACHE_HOME (runCli points it into the test's own directory).
+TEST(Cli, ModelCacheGivesTheSameResultAndADamagedFileIsComputedAgain) {
+  const std::string cache = temp("model_cache");
+  std::filesystem::remove_all(cache);
+  const std::string args = "--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan;
+  const auto cacheFiles = [](const std::string& dir) {
+    std::vector<std::filesystem::path> files;
+    if (std::filesystem::exists(dir)) {
+      for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        files.push_back(entry.path());
+      }
+    }
+    return files;
+  };
+  const auto withoutTimings = [](const std::string& out) {
+    nlohmann::json json = nlohmann::json::parse(out);
+    json.erase("timings_s");
+    return json;
+  };
+  const CliRun first = runCli(args + " --model-cache " + cache);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const std::vector<std::filesystem::path> files = cacheFiles(cache);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files.front().extension(), ".fimodel");
+  const CliRun second = runCli(args + " --model-cache " + cache);
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_EQ(withoutTimings(second.out), withoutTimings(first.out));
+
+  std::ofstream(files.front(), std::ios::trunc) << "damaged";
+  const CliRun damaged = runCli(args + " --model-cache " + cache);
+  ASSERT_EQ(damaged.exit_code, 0) << damaged.err;
+  nlohmann::json json = withoutTimings(damaged.out);
+  ASSERT_EQ(json["warnings"].size(), 1u) << json["warnings"];
+  EXPECT_NE(json["warnings"][0].get<std::string>().find("computed again"), std::string::npos);
+  json["warnings"] = nlohmann::json::array();
+  EXPECT_EQ(json, withoutTimings(first.out));
+
+  const std::string default_cache = kDefaultCache + "/freeform_inspection/models";
+  std::filesystem::remove_all(kDefaultCache);
+  ASSERT_EQ(runCli(args + " --no-model-cache").exit_code, 0);
+  EXPECT_TRUE(cacheFiles(default_cache).empty());
+  ASSERT_EQ(runCli(args).exit_code, 0);
+  EXPECT_EQ(cacheFiles(default_cache).size(), 1u);
 }
 
 }  // namespace
