@@ -733,11 +733,14 @@ void runStages(const Model& model,
                Stopwatch* watch,
                InspectionResult* result) {
   std::size_t cropped = 0;
-  CleanScanResult cleaned = cleanWithGridFaces(
-      cropToBox(scan, config.input.crop_box, &cropped), model.bounds(), config.input);
+  const bool crop = !config.input.crop_box.empty();
+  const Scan inside = crop ? cropToBox(scan, config.input.crop_box, &cropped) : Scan();
+  CleanScanResult cleaned = cleanWithGridFaces(crop ? inside : scan, model.bounds(), config.input);
   watch->lap("clean");
   result->counts.cropped = cropped;
-  result->counts.non_finite = cleaned.non_finite - cropped;
+  // The cropped points were made NaN for the cleaning to drop; they are not the scanner's NaN.
+  // (A scan refused before the cleaning counted anything has counted nothing.)
+  result->counts.non_finite = cleaned.non_finite >= cropped ? cleaned.non_finite - cropped : 0;
   result->status = cleaned.status;
   if (!result->status.ok() || !watch->proceed("supports", 0.01)) {
     return;

@@ -35,10 +35,10 @@ constexpr double kGridSpacings = 3.0;
 // The surface density is measured from each of this many points' distance to its k-th nearest
 // neighbour.
 constexpr std::size_t kDensitySamples = 500;
+constexpr int kDensityNeighbours = 8;
 // A plane's patches are measured on an even sample of at most this many of its points (its
 // density read from the same sample): enough for cells of a few per cent of L.
 constexpr std::size_t kMaxPatchPoints = 20000;
-constexpr int kDensityNeighbours = 8;
 // A cell is surface when it holds this share of the points the surface puts in it, and at least
 // this many.
 constexpr double kMinCellShare = 0.5;
@@ -51,7 +51,7 @@ constexpr int kWidthDirections = 16;
 // Noise floor of the band, as a share of L (the pipeline's floor of a residual).
 constexpr double kMinNoiseRatio = 1e-3;
 
-// Every `step`-th of the indices: RANSAC's sample, the same for any thread count.
+// At most `count` of the indices, evenly spread over the list (deterministic).
 std::vector<int> evenSample(const std::vector<int>& indices, std::size_t count) {
   std::vector<int> sample;
   const std::size_t n = indices.size();

@@ -101,6 +101,22 @@ TEST(Inspect, TableWithNothingOnItIsRefusedNamingTheSupport) {
   EXPECT_NE(result.warnings.front().find("support plane"), std::string::npos);
 }
 
+TEST(Inspect, CroppedScanRefusedForItsSizeCountsTheCropNotNonFinitePoints) {
+  // Refused before the cleaning counted anything: the cropped point is not reported as a NaN
+  // the scanner sent (the count once wrapped below zero).
+  Scan scan;
+  scan.points = test::sampleBoxSurface(kHalf, 500, 3);
+  scan.points.emplace_back(1.0, 1.0, 1.0);
+  PipelineConfig config;
+  config.input.max_points = 100;
+  config.input.crop_box = {-0.1, -0.1, -0.1, 0.1, 0.1, 0.1};
+  const InspectionResult result = inspect(boxModel(), scan, config);
+  EXPECT_EQ(result.status.code, StatusCode::kInvalidInput);
+  EXPECT_NE(result.status.message.find("input.max_points"), std::string::npos);
+  EXPECT_EQ(result.counts.cropped, 1u);
+  EXPECT_EQ(result.counts.non_finite, 0u);
+}
+
 TEST(Inspect, InvalidConfigurationIsACallerErrorAndThrows) {
   PipelineConfig config;
   config.tolerance.upper = -1.0;
