@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "freeform_inspection/types.h"
 
 /// @file scan_cleaning.h
@@ -20,17 +22,25 @@ struct InputConfig {
   double max_extent_ratio = 50.0;     ///< scan/CAD diagonal ratio beyond which units are suspect
   double min_thickness_ratio = 1e-3;  ///< principal spread (2nd or 3rd over 1st) below which the
                                       ///< scan is collinear or planar and cannot fix a pose
-  /// [m] the box a scan is cropped to before anything else, in the scan's own frame:
-  /// {x_min, y_min, z_min, x_max, y_max, z_max}; empty keeps every point. For what a fixed
-  /// scanner always sees around the part (fixture, clamps, the robot's gripper).
+  /// [m] the box a scan is cropped to before anything else, in the frame of
+  /// `crop_frame_from_scan`: {x_min, y_min, z_min, x_max, y_max, z_max}; empty keeps every
+  /// point. For what the scanner always sees around the part (fixture, clamps, a gripper).
   std::vector<double> crop_box;
+  /// Takes scan coordinates into the frame the crop box is given in. Not a configuration key:
+  /// identity (the box is in the scan's own frame), or set per scan by the caller (the node: the
+  /// scan's pose in ~fixed_frame, so a box around a fixture holds wherever the robot carries the
+  /// scanner).
+  Eigen::Isometry3d crop_frame_from_scan = Eigen::Isometry3d::Identity();
 };
 
-/// @brief The points of `scan` outside `box` ({x_min, y_min, z_min, x_max, y_max, z_max}, the
-/// scan's frame) made NaN, so cleanScan() drops them with the faces through them and an
-/// organized scan keeps its grid; `cropped` counts them (NaN points already there are not).
-/// An empty box changes nothing.
-Scan cropToBox(const Scan& scan, const std::vector<double>& box, std::size_t* cropped);
+/// @brief The points of `scan` outside `box` ({x_min, y_min, z_min, x_max, y_max, z_max} in the
+/// frame that `box_from_scan` takes the scan into) made NaN, so cleanScan() drops them with the
+/// faces through them and an organized scan keeps its grid; `cropped` counts them (NaN points
+/// already there are not). An empty box changes nothing.
+Scan cropToBox(const Scan& scan,
+               const std::vector<double>& box,
+               const Eigen::Isometry3d& box_from_scan,
+               std::size_t* cropped);
 
 /// Result of cleaning.
 struct CleanScanResult {

@@ -734,7 +734,9 @@ void runStages(const Model& model,
                InspectionResult* result) {
   std::size_t cropped = 0;
   const bool crop = !config.input.crop_box.empty();
-  const Scan inside = crop ? cropToBox(scan, config.input.crop_box, &cropped) : Scan();
+  const Scan inside =
+      crop ? cropToBox(scan, config.input.crop_box, config.input.crop_frame_from_scan, &cropped)
+           : Scan();
   CleanScanResult cleaned = cleanWithGridFaces(crop ? inside : scan, model.bounds(), config.input);
   watch->lap("clean");
   result->counts.cropped = cropped;
@@ -853,6 +855,9 @@ std::vector<std::string> validate(const PipelineConfig& config) {
     errors.push_back(
         "input.crop_box must be empty or six finite numbers [x_min, y_min, z_min, x_max, y_max, "
         "z_max] with each minimum below its maximum");
+  }
+  if (!input.crop_frame_from_scan.matrix().allFinite()) {
+    errors.push_back("input.crop_frame_from_scan must be a finite transform");
   }
   for (const auto& list : {validate(config.support),
                            validate(config.descriptor),

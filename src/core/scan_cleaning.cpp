@@ -108,7 +108,10 @@ Status checkShape(const Points& points, const InputConfig& config) {
 
 }  // namespace
 
-Scan cropToBox(const Scan& scan, const std::vector<double>& box, std::size_t* cropped) {
+Scan cropToBox(const Scan& scan,
+               const std::vector<double>& box,
+               const Eigen::Isometry3d& box_from_scan,
+               std::size_t* cropped) {
   *cropped = 0;
   if (box.size() != 6) {
     return scan;
@@ -117,7 +120,9 @@ Scan cropToBox(const Scan& scan, const std::vector<double>& box, std::size_t* cr
   const Eigen::Vector3d high(box[3], box[4], box[5]);
   Scan inside = scan;
   for (Eigen::Vector3d& p : inside.points) {
-    if (p.allFinite() && !((p.array() >= low.array()).all() && (p.array() <= high.array()).all())) {
+    const Eigen::Vector3d in_box = box_from_scan * p;
+    if (p.allFinite() &&
+        !((in_box.array() >= low.array()).all() && (in_box.array() <= high.array()).all())) {
       p = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
       ++*cropped;
     }

@@ -409,7 +409,10 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
     }
     header.frame_id = config_.fixed_frame;
   }
-  const fi::PipelineConfig pipeline = requestPipeline(config_.pipeline, request);
+  fi::PipelineConfig pipeline = requestPipeline(config_.pipeline, request);
+  // ~input/crop_box is given in the fixed frame when there is one (a box around the fixture
+  // holds wherever a robot carries the scanner), else in the scan's own.
+  pipeline.input.crop_frame_from_scan = T_fixed_scan;
   if (!stage("inspecting", kInspectingProgress)) {
     return cancelledReport("before the inspection started", scan_header);
   }

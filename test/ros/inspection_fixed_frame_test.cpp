@@ -13,6 +13,7 @@
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
+#include "freeform_inspection/io.h"
 #include <freeform_inspection/Inspect.h>
 
 namespace freeform_inspection_rostest {
@@ -57,6 +58,20 @@ TEST(FixedFrame, ScanIsMovedIntoTheFixedFrameAndAnUnknownFrameIsRefused) {
   }
   EXPECT_EQ(call(cloudRequest(sampleCloud())).status, Inspect::Response::PASS)
       << "the node must keep serving after a refused frame";
+
+  // ~input/crop_box (the .test file) is a box of the world: clutter 0.4 m in front of the part
+  // (1.5 m up in the world) is cropped, the part is not. Tested in the scanner's frame the box
+  // would hold nothing of the scan (its z there is 0.04-0.11 m).
+  freeform_inspection::Points points =
+      freeform_inspection::loadScan(param("sample_scan"), 1.0).scan.points;
+  const std::size_t part = points.size();
+  for (int i = 0; i < 300; ++i) {
+    points.emplace_back(-0.17 + 0.0001 * i, 0.0, 0.5);
+  }
+  const Inspect::Response cropped = call(cloudRequest(toCloud(points, "scanner")));
+  EXPECT_EQ(cropped.status, Inspect::Response::PASS) << cropped.message;
+  EXPECT_EQ(cropped.report.counts.cropped, 300u);
+  EXPECT_EQ(cropped.report.counts.scan_points, part);
 }
 
 }  // namespace

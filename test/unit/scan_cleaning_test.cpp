@@ -144,7 +144,8 @@ TEST(CropToBox, DropsWhatLiesOutsideAndCountsItKeepingTheGrid) {
   scan.points = {
       {0, 0, 0}, {0.2, 0, 0}, {nan, 0, 0}, {0.05, -0.05, 0.09}, {0, 0, -0.2}, {0, 0, 0.1}};
   std::size_t cropped = 0;
-  const Scan inside = cropToBox(scan, {-0.1, -0.1, -0.1, 0.1, 0.1, 0.1}, &cropped);
+  const Scan inside =
+      cropToBox(scan, {-0.1, -0.1, -0.1, 0.1, 0.1, 0.1}, Eigen::Isometry3d::Identity(), &cropped);
   EXPECT_EQ(cropped, 2u);  // x = 0.2 and z = -0.2; the NaN was not a point, z = 0.1 is on the box
   ASSERT_EQ(inside.points.size(), 6u);
   EXPECT_EQ(inside.width, 3);
@@ -158,9 +159,27 @@ TEST(CropToBox, DropsWhatLiesOutsideAndCountsItKeepingTheGrid) {
   const CleanScanResult cleaned = cleanScan(inside, modelBounds(), InputConfig());
   EXPECT_EQ(cleaned.non_finite, 3u);  // the pipeline subtracts the cropped ones
   // No box: nothing changes.
-  const Scan same = cropToBox(scan, {}, &cropped);
+  const Scan same = cropToBox(scan, {}, Eigen::Isometry3d::Identity(), &cropped);
   EXPECT_EQ(cropped, 0u);
   EXPECT_FALSE(same.points[1].hasNaN());
+}
+
+TEST(CropToBox, ABoxInAnotherFrameIsTestedThere) {
+  // box_from_scan turns a quarter about z, then moves 1 m down: (0.2, 0, 1) → (0, 0.2, 0),
+  // inside the box; (0, 0.2, 1) → (−0.2, 0, 0) and (0.2, 0, 0) → (0, 0.2, −1), outside.
+  Scan scan;
+  scan.points = {{0.2, 0.0, 1.0}, {0.0, 0.2, 1.0}, {0.2, 0.0, 0.0}};
+  const Eigen::Isometry3d box_from_scan = Eigen::Translation3d(0.0, 0.0, -1.0) *
+                                          Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitZ());
+  std::size_t cropped = 0;
+  const Scan inside = cropToBox(scan, {-0.1, 0.1, -0.1, 0.1, 0.3, 0.1}, box_from_scan, &cropped);
+  EXPECT_EQ(cropped, 2u);
+  EXPECT_TRUE(inside.points[0].allFinite());
+  EXPECT_FALSE(inside.points[1].allFinite());
+  EXPECT_FALSE(inside.points[2].allFinite());
+  // The same box in the scan's own frame holds none of them.
+  cropToBox(scan, {-0.1, 0.1, -0.1, 0.1, 0.3, 0.1}, Eigen::Isometry3d::Identity(), &cropped);
+  EXPECT_EQ(cropped, 3u);
 }
 
 }  // namespace
