@@ -89,6 +89,15 @@ VerificationSet makeVerificationSet(const SurfaceGraph& scan,
                                     std::size_t count,
                                     bool oriented = false);
 
+/// @brief The same cells as makeVerificationSet(), each placed at the mean of its points'
+/// `positions` (indexed like scan.point_cell: a noisy cloud's points moved onto their fitted
+/// surfaces) instead of at its centroid, which is a mean of a few measured points and keeps most
+/// of their noise. A cell none of whose points has a position keeps its centroid.
+VerificationSet makeVerificationSet(const SurfaceGraph& scan,
+                                    std::size_t count,
+                                    bool oriented,
+                                    const Points& positions);
+
 /// @brief Share of the set the pose explains: mean over points of max(0, 1 − d²/τ²) where d is
 /// the distance to the CAD surface, counted only where the normals agree.
 double verificationScore(const Eigen::Isometry3d& T_cad_scan,
@@ -114,6 +123,11 @@ std::vector<double> verificationTerms(const Eigen::Isometry3d& T_cad_scan,
 /// A symmetric part's twins explain the same points but for the noise; the twin of a
 /// near-symmetric part that the view does tell apart leaves the differing feature unexplained.
 bool scanPrefers(const std::vector<double>& a, const std::vector<double>& b);
+
+/// @brief The sign test of scanPrefers() alone: the points only `a` explains outnumber those
+/// only `b` explains by `sigmas` standard deviations of a coin toss between the two, without
+/// its share and ratio. Evidence that leans `a`'s way, too weak to decide on its own.
+bool scanLeans(const std::vector<double>& a, const std::vector<double>& b, double sigmas);
 
 /// @brief True when two poses differ by more than `angle_deg` or move `reference` (scan frame)
 /// by more than `distance`.

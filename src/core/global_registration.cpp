@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -306,6 +307,31 @@ VerificationSet makeVerificationSet(const SurfaceGraph& scan, std::size_t count,
   return set;
 }
 
+VerificationSet makeVerificationSet(const SurfaceGraph& scan,
+                                    std::size_t count,
+                                    bool oriented,
+                                    const Points& positions) {
+  VerificationSet set = makeVerificationSet(scan, count, oriented);
+  std::vector<Eigen::Vector3d> sums(scan.size(), Eigen::Vector3d::Zero());
+  std::vector<int> counts(scan.size(), 0);
+  const std::size_t known = std::min(positions.size(), scan.point_cell.size());
+  for (std::size_t i = 0; i < known; ++i) {
+    const int cell = scan.point_cell[i];
+    if (cell >= 0 && static_cast<std::size_t>(cell) < scan.size() && positions[i].allFinite()) {
+      sums[static_cast<std::size_t>(cell)] += positions[i];
+      ++counts[static_cast<std::size_t>(cell)];
+    }
+  }
+  const std::size_t n = scan.size();
+  for (std::size_t i = 0; i < set.points.size(); ++i) {
+    const std::size_t cell = i * n / set.points.size();  // the cells makeVerificationSet took
+    if (counts[cell] > 0) {
+      set.points[i] = sums[cell] / static_cast<double>(counts[cell]);
+    }
+  }
+  return set;
+}
+
 std::vector<double> verificationTerms(const Eigen::Isometry3d& T_cad_scan,
                                       const VerificationSet& set,
                                       const MeshQuery& cad,
@@ -357,10 +383,11 @@ double verificationScore(const Eigen::Isometry3d& T_cad_scan,
   return sum / static_cast<double>(set.points.size());
 }
 
-bool scanPrefers(const std::vector<double>& a, const std::vector<double>& b) {
-  constexpr double kMinRatio = 2.0;
-  constexpr double kSigmas = 3.0;
-  constexpr double kMinShare = 0.01;  // of the points: a feature, not a few stray ones
+namespace {
+
+// The points only `a` explains and those only `b` explains (terms > 0 in one, not the other).
+std::pair<double, double> exclusivelyExplained(const std::vector<double>& a,
+                                               const std::vector<double>& b) {
   const std::size_t count = std::min(a.size(), b.size());
   double only_a = 0.0;
   double only_b = 0.0;
@@ -368,8 +395,28 @@ bool scanPrefers(const std::vector<double>& a, const std::vector<double>& b) {
     only_a += a[i] > 0.0 && !(b[i] > 0.0) ? 1.0 : 0.0;
     only_b += b[i] > 0.0 && !(a[i] > 0.0) ? 1.0 : 0.0;
   }
-  return only_a > 0.0 && only_a >= kMinShare * static_cast<double>(count) &&
-         only_a >= kMinRatio * only_b && only_a - only_b >= kSigmas * std::sqrt(only_a + only_b);
+  return {only_a, only_b};
+}
+
+bool leans(double only_a, double only_b, double sigmas) {
+  return only_a > only_b && only_a - only_b >= sigmas * std::sqrt(only_a + only_b);
+}
+
+}  // namespace
+
+bool scanPrefers(const std::vector<double>& a, const std::vector<double>& b) {
+  constexpr double kMinRatio = 2.0;
+  constexpr double kSigmas = 3.0;
+  constexpr double kMinShare = 0.01;  // of the points: a feature, not a few stray ones
+  const auto [only_a, only_b] = exclusivelyExplained(a, b);
+  const auto count = static_cast<double>(std::min(a.size(), b.size()));
+  return only_a > 0.0 && only_a >= kMinShare * count && only_a >= kMinRatio * only_b &&
+         leans(only_a, only_b, kSigmas);
+}
+
+bool scanLeans(const std::vector<double>& a, const std::vector<double>& b, double sigmas) {
+  const auto [only_a, only_b] = exclusivelyExplained(a, b);
+  return leans(only_a, only_b, sigmas);
 }
 
 bool distinctPoses(const Eigen::Isometry3d& a,
