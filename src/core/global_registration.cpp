@@ -294,13 +294,24 @@ Eigen::Vector3d VerificationSet::centroid() const {
   return mean;
 }
 
+namespace {
+
+// The cells a verification set takes: up to `count` of `n`, evenly spread, deterministic.
+std::vector<std::size_t> verificationCells(std::size_t n, std::size_t count) {
+  const std::size_t taken = std::min(n, count);
+  std::vector<std::size_t> cells(taken);
+  for (std::size_t i = 0; i < taken; ++i) {
+    cells[i] = i * n / taken;
+  }
+  return cells;
+}
+
+}  // namespace
+
 VerificationSet makeVerificationSet(const SurfaceGraph& scan, std::size_t count, bool oriented) {
   VerificationSet set;
   set.oriented = oriented;
-  const std::size_t n = scan.size();
-  const std::size_t taken = std::min(n, count);
-  for (std::size_t i = 0; i < taken; ++i) {
-    const std::size_t cell = i * n / taken;  // evenly spread, deterministic
+  for (const std::size_t cell : verificationCells(scan.size(), count)) {
     set.points.push_back(scan.centroids[cell]);
     set.normals.push_back(scan.normals[cell]);
   }
@@ -322,11 +333,10 @@ VerificationSet makeVerificationSet(const SurfaceGraph& scan,
       ++counts[static_cast<std::size_t>(cell)];
     }
   }
-  const std::size_t n = scan.size();
-  for (std::size_t i = 0; i < set.points.size(); ++i) {
-    const std::size_t cell = i * n / set.points.size();  // the cells makeVerificationSet took
-    if (counts[cell] > 0) {
-      set.points[i] = sums[cell] / static_cast<double>(counts[cell]);
+  const std::vector<std::size_t> cells = verificationCells(scan.size(), count);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (counts[cells[i]] > 0) {
+      set.points[i] = sums[cells[i]] / static_cast<double>(counts[cells[i]]);
     }
   }
   return set;

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
+#include "median_internal.h"
 #include "pipeline_internal.h"
 #include "turn_votes_internal.h"
 
@@ -168,12 +170,11 @@ double spreadBand(const VerificationSet& set,
   if (distances.empty()) {
     return 0.0;
   }
-  const auto middle = distances.begin() + static_cast<std::ptrdiff_t>(distances.size() / 2);
-  std::nth_element(distances.begin(), middle, distances.end());
-  if (!std::isfinite(*middle)) {
+  const double middle = internal::median(std::move(distances));
+  if (!std::isfinite(middle)) {
     return 0.0;
   }
-  return std::clamp(3.0 * *middle / 0.6745, 0.25 * cell, limit);
+  return std::clamp(3.0 * middle / 0.6745, 0.25 * cell, limit);
 }
 
 // The symmetric twins S·T and S⁻¹·T of `pose` (symmetry.h), refined.
