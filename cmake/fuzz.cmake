@@ -31,6 +31,11 @@ function(freeform_add_fuzz_target name)
 endfunction()
 
 add_custom_target(fuzz)
+# PCL's PCD reader is a module the core opens at run time (src/core/io/pcd_module.cpp): built and
+# instrumented with the targets, beside them.
+target_compile_options(freeform_inspection_pcd PRIVATE ${FREEFORM_FUZZ_COMPILE_OPTIONS}
+  -Wno-sign-conversion)
+add_dependencies(fuzz freeform_inspection_pcd)
 
 # The entries shared with test/unit/fuzz_corpus_test.cpp.
 add_library(freeform_fuzz_entries STATIC test/fuzz/fuzz_entries.cpp test/fuzz/fuzz_input_file.cpp)

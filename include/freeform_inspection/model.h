@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,22 +26,27 @@ namespace freeform_inspection {
 /// @return nothing for any other name (units are never guessed).
 std::optional<double> unitScale(const std::string& units);
 
-/// Where a Model may find what it would otherwise compute: the entry stored under its key, or
-/// nothing (model_cache.h).
-using ModelCacheLookup = std::function<std::optional<ModelCacheEntry>(const std::string& key)>;
-
 /// A loaded CAD model and everything computed once about it (descriptors at the kernel radii
 /// derived from its size). Immutable once built; share it between inspections.
 class Model {
  public:
-  /// @brief Takes a mesh already in metres and computes its descriptors and symmetries, or takes
-  /// them from `cached` when it has an entry for the model's key. Use loadModel() to read one
-  /// from a file.
+  /// @brief Takes a mesh already in metres, winds it outward and computes its descriptors and
+  /// symmetries. Use loadModel() to read one from a file (and keep it in a cache).
   Model(TriangleMesh mesh,
         std::string id,
         std::string source,
-        const DescriptorConfig& descriptor_config = DescriptorConfig(),
-        const ModelCacheLookup& cached = ModelCacheLookup());
+        const DescriptorConfig& descriptor_config = DescriptorConfig());
+
+  /// @brief Takes everything from a cache entry written from cacheEntry() of a Model built with
+  /// the same settings: the same model, bit for bit, without computing anything but the
+  /// closest-point structure.
+  Model(ModelCacheEntry entry,
+        std::string id,
+        std::string source,
+        const DescriptorConfig& descriptor_config);
+
+  /// @brief What the cache keeps of this model; `load_warnings` are what reading its file said.
+  ModelCacheEntry cacheEntry(std::vector<std::string> load_warnings) const;
 
   const TriangleMesh& mesh() const { return mesh_; }
   const BoundingBox& bounds() const { return bounds_; }
@@ -70,7 +74,7 @@ class Model {
   const std::vector<std::uint8_t>& faceBorderEdges() const { return face_border_edges_; }
   /// How the mesh's winding was made consistent and outward on construction.
   const OrientationResult& orientation() const { return orientation_; }
-  /// True when the descriptors and symmetries came from a cache entry instead of being computed.
+  /// True when the model came from a cache entry instead of being computed.
   bool fromCache() const { return from_cache_; }
 
  private:

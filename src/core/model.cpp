@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <utility>
 
+#include "io/file_util.h"
+
 #include "freeform_inspection/io.h"
 
 namespace freeform_inspection {
@@ -100,8 +102,7 @@ std::optional<double> unitScale(const std::string& units) {
 Model::Model(TriangleMesh mesh,
              std::string id,
              std::string source,
-             const DescriptorConfig& descriptor_config,
-             const ModelCacheLookup& cached)
+             const DescriptorConfig& descriptor_config)
     : mesh_(orientedOutward(std::move(mesh), &orientation_)),
       bounds_(computeBoundingBox(mesh_.vertices)),
       topology_(analyzeTopology(mesh_)),
@@ -111,15 +112,39 @@ Model::Model(TriangleMesh mesh,
       descriptor_config_(descriptor_config),
       query_(std::make_unique<MeshQuery>(mesh_)),
       face_border_edges_(borderEdgeMasks(mesh_)) {
-  std::optional<ModelCacheEntry> entry = cached ? cached(descriptor_key_) : std::nullopt;
-  if (entry) {
-    descriptors_ = std::move(entry->descriptors);
-    symmetries_ = std::move(entry->symmetries);
-    from_cache_ = true;
-    return;
-  }
   descriptors_ = describeModel(mesh_, bounds_.diagonal(), descriptor_config);
   symmetries_ = findSymmetries(descriptors_, *query_, cellSize(), bounds_.diagonal());
+}
+
+Model::Model(ModelCacheEntry entry,
+             std::string id,
+             std::string source,
+             const DescriptorConfig& descriptor_config)
+    : orientation_(entry.orientation),
+      mesh_(std::move(entry.mesh)),
+      bounds_(computeBoundingBox(mesh_.vertices)),
+      topology_(entry.topology),
+      id_(std::move(id)),
+      source_(std::move(source)),
+      descriptors_(std::move(entry.descriptors)),
+      descriptor_key_(std::move(entry.descriptor_key)),
+      descriptor_config_(descriptor_config),
+      query_(std::make_unique<MeshQuery>(mesh_)),
+      symmetries_(std::move(entry.symmetries)),
+      face_border_edges_(std::move(entry.face_border_edges)),
+      from_cache_(true) {}
+
+ModelCacheEntry Model::cacheEntry(std::vector<std::string> load_warnings) const {
+  ModelCacheEntry entry;
+  entry.mesh = mesh_;
+  entry.orientation = orientation_;
+  entry.topology = topology_;
+  entry.face_border_edges = face_border_edges_;
+  entry.load_warnings = std::move(load_warnings);
+  entry.descriptor_key = descriptor_key_;
+  entry.descriptors = descriptors_;
+  entry.symmetries = symmetries_;
+  return entry;
 }
 
 std::string descriptorSettingsKey(const DescriptorConfig& config) {
@@ -133,14 +158,40 @@ double Model::cellSize() const {
                                     : descriptor_config_.cell_ratio * descriptors_.radii.front();
 }
 
-ModelLoadResult loadModel(const std::string& path,
-                          double scale,
-                          const std::string& id,
-                          const DescriptorConfig& descriptor_config,
-                          const std::string& cache_directory) {
+namespace {
+
+// The model of `path` from the cache entry of its bytes, or computed (and the entry written). A
+// cache file that exists but cannot be used, or cannot be written, is said in `cache_notes`; a
+// missing one is the first load. Without a cache directory the file is read once, by loadMesh.
+ModelLoadResult modelOfFile(const std::string& path,
+                            double scale,
+                            const std::string& id,
+                            const DescriptorConfig& descriptor_config,
+                            const std::string& cache_directory,
+                            std::vector<std::string>* cache_notes) {
   ModelLoadResult result;
+  std::string key;
+  if (!cache_directory.empty()) {
+    std::string bytes;
+    if (io_internal::readWholeFile(path, &bytes).ok()) {
+      key = modelFileKey(bytes, scale, descriptorSettingsKey(descriptor_config));
+    }
+  }
+  std::string cache_problem;
+  if (!key.empty()) {
+    ModelCacheRead read = readModelCache(cache_directory, key);
+    if (read.entry) {
+      result.warnings = read.entry->load_warnings;
+      result.model =
+          std::make_shared<const Model>(std::move(*read.entry), id, path, descriptor_config);
+      return result;
+    }
+    if (!read.missing) {
+      cache_problem = read.status.message;
+    }
+  }
   MeshLoadResult loaded = loadMesh(path, scale);
-  result.warnings = std::move(loaded.warnings);
+  result.warnings = loaded.warnings;
   if (!loaded.status.ok()) {
     result.status = loaded.status;
     return result;
@@ -150,60 +201,69 @@ ModelLoadResult loadModel(const std::string& path,
         Status::failure(StatusCode::kDegenerateInput, "CAD model '" + path + "' has zero extent");
     return result;
   }
-  // A cache file that exists but cannot be used is said; a missing one is the first load.
-  std::string cache_problem;
-  ModelCacheLookup lookup;
-  if (!cache_directory.empty()) {
-    lookup = [&](const std::string& key) {
-      ModelCacheRead read = readModelCache(cache_directory, key);
-      if (!read.entry && !read.missing) {
-        cache_problem = read.status.message;
-      }
-      return std::move(read.entry);
-    };
-  }
-  auto model =
-      std::make_shared<const Model>(std::move(loaded.mesh), id, path, descriptor_config, lookup);
-  if (model->topology().area <= 0.0) {
-    result.status = Status::failure(StatusCode::kDegenerateInput,
-                                    "CAD model '" + path + "' has zero surface area");
-    return result;
-  }
-  if (!model->query().status().ok()) {
-    result.status = model->query().status();
-    result.status.message = "CAD model '" + path + "': " + result.status.message;
-    return result;
-  }
-  if (!model->descriptors().status.ok()) {
-    result.status = model->descriptors().status;
-    result.status.message = "CAD model '" + path + "': " + result.status.message;
-    return result;
-  }
-  if (model->orientation().flipped_faces > 0) {
-    result.warnings.push_back("CAD model '" + path +
-                              "': " + std::to_string(model->orientation().flipped_faces) +
-                              " faces were wound inward or inconsistently and were turned to "
-                              "face outward");
-  }
-  const MeshTopology& topology = model->topology();
-  if (!topology.isClosedManifold()) {
-    result.warnings.push_back("CAD model '" + path + "' is not a closed, consistently oriented " +
-                              "manifold (" + std::to_string(topology.boundary_edges) +
-                              " boundary, " + std::to_string(topology.non_manifold_edges) +
-                              " non-manifold, " + std::to_string(topology.misoriented_edges) +
-                              " misoriented edges): deviation signs may be unreliable");
-  }
+  auto model = std::make_shared<const Model>(std::move(loaded.mesh), id, path, descriptor_config);
   if (!cache_problem.empty()) {
-    result.warnings.push_back(cache_problem + ": computed again");
+    cache_notes->push_back(cache_problem + ": computed again");
   }
-  if (!cache_directory.empty() && !model->fromCache()) {
-    const Status written = writeModelCache(
-        cache_directory, model->descriptorKey(), model->descriptors(), model->symmetries());
+  // Only a usable model is kept: a failed one is computed again, and fails again, next time.
+  const bool usable = model->topology().area > 0.0 && model->query().status().ok() &&
+                      model->descriptors().status.ok();
+  if (!key.empty() && usable) {
+    const Status written =
+        writeModelCache(cache_directory, key, model->cacheEntry(std::move(loaded.warnings)));
     if (!written.ok()) {
-      result.warnings.push_back(written.message + " (the model is used, not cached)");
+      cache_notes->push_back(written.message + " (the model is used, not cached)");
     }
   }
   result.model = std::move(model);
+  return result;
+}
+
+}  // namespace
+
+ModelLoadResult loadModel(const std::string& path,
+                          double scale,
+                          const std::string& id,
+                          const DescriptorConfig& descriptor_config,
+                          const std::string& cache_directory) {
+  std::vector<std::string> cache_notes;
+  ModelLoadResult result =
+      modelOfFile(path, scale, id, descriptor_config, cache_directory, &cache_notes);
+  if (!result.status.ok()) {
+    result.model.reset();
+    return result;
+  }
+  const Model& model = *result.model;
+  std::vector<std::string> notes;
+  if (model.topology().area <= 0.0) {
+    result.status = Status::failure(StatusCode::kDegenerateInput,
+                                    "CAD model '" + path + "' has zero surface area");
+  } else if (!model.query().status().ok()) {
+    result.status = model.query().status();
+    result.status.message = "CAD model '" + path + "': " + result.status.message;
+  } else if (!model.descriptors().status.ok()) {
+    result.status = model.descriptors().status;
+    result.status.message = "CAD model '" + path + "': " + result.status.message;
+  }
+  if (!result.status.ok()) {
+    result.model.reset();
+    return result;
+  }
+  if (model.orientation().flipped_faces > 0) {
+    notes.push_back("CAD model '" + path +
+                    "': " + std::to_string(model.orientation().flipped_faces) +
+                    " faces were wound inward or inconsistently and were turned to face outward");
+  }
+  const MeshTopology& topology = model.topology();
+  if (!topology.isClosedManifold()) {
+    notes.push_back("CAD model '" + path + "' is not a closed, consistently oriented " +
+                    "manifold (" + std::to_string(topology.boundary_edges) + " boundary, " +
+                    std::to_string(topology.non_manifold_edges) + " non-manifold, " +
+                    std::to_string(topology.misoriented_edges) +
+                    " misoriented edges): deviation signs may be unreliable");
+  }
+  result.warnings.insert(result.warnings.end(), notes.begin(), notes.end());
+  result.warnings.insert(result.warnings.end(), cache_notes.begin(), cache_notes.end());
   return result;
 }
 

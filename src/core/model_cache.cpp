@@ -2,17 +2,18 @@
 // Copyright 2026 The freeform_inspection authors
 #include "freeform_inspection/model_cache.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <system_error>
 #include <type_traits>
 #include <utility>
 
+#include "io/file_util.h"
 #include <unistd.h>
 
 #include "freeform_inspection/content_hash.h"
@@ -26,7 +27,7 @@ namespace {
 
 constexpr char kMagic[8] = {'F', 'I', 'M', 'O', 'D', 'E', 'L', 'C'};
 // Bumped when the layout below changes; the package version covers changes of what is computed.
-constexpr std::uint32_t kFormat = 1;
+constexpr std::uint32_t kFormat = 2;
 
 // Appends values to a byte buffer in the machine's own representation (the cache never leaves
 // the machine that wrote it, and the version check refuses another build's file).
@@ -149,15 +150,6 @@ class Reader {
     return matrix;
   }
 
- private:
-  bool take(std::size_t bytes) {
-    if (!ok_ || bytes > size_ - position_) {
-      ok_ = false;
-      return false;
-    }
-    position_ += bytes;
-    return true;
-  }
   // A count of items of `item_size` bytes each, refused when the file cannot hold them.
   std::uint64_t getCount(std::size_t item_size) {
     const auto count = get<std::uint64_t>();
@@ -166,6 +158,16 @@ class Reader {
       return 0;
     }
     return count;
+  }
+
+ private:
+  bool take(std::size_t bytes) {
+    if (!ok_ || bytes > size_ - position_) {
+      ok_ = false;
+      return false;
+    }
+    position_ += bytes;
+    return true;
   }
 
   const char* data_;
@@ -204,6 +206,81 @@ void putDescriptors(const DescriptorResult& d, Writer* out) {
   for (const std::string& warning : d.warnings) {
     out->putText(warning);
   }
+}
+
+void putPrepared(const ModelCacheEntry& e, Writer* out) {
+  out->putPoints(e.mesh.vertices);
+  out->put<std::uint64_t>(e.mesh.faces.size());
+  for (const Eigen::Vector3i& f : e.mesh.faces) {
+    out->put<std::int32_t>(f[0]);
+    out->put<std::int32_t>(f[1]);
+    out->put<std::int32_t>(f[2]);
+  }
+  out->putPoints(e.mesh.face_normals);
+  out->put<std::uint64_t>(e.orientation.components);
+  out->put<std::uint64_t>(e.orientation.flipped_faces);
+  out->put<std::uint64_t>(e.orientation.reversed_components);
+  const MeshTopology& t = e.topology;
+  for (const std::size_t count : {t.edges,
+                                  t.boundary_edges,
+                                  t.non_manifold_edges,
+                                  t.misoriented_edges,
+                                  t.degenerate_faces,
+                                  t.unused_vertices}) {
+    out->put<std::uint64_t>(count);
+  }
+  out->put(t.signed_volume);
+  out->put(t.area);
+  out->putVector(e.face_border_edges);
+  out->put<std::uint64_t>(e.load_warnings.size());
+  for (const std::string& warning : e.load_warnings) {
+    out->putText(warning);
+  }
+  out->putText(e.descriptor_key);
+}
+
+void getPrepared(Reader* in, ModelCacheEntry* e) {
+  e->mesh.vertices = in->getPoints();
+  const std::uint64_t faces = in->getCount(3 * sizeof(std::int32_t));
+  e->mesh.faces.reserve(faces);
+  for (std::uint64_t i = 0; i < faces && in->ok(); ++i) {
+    const auto a = in->get<std::int32_t>();
+    const auto b = in->get<std::int32_t>();
+    e->mesh.faces.emplace_back(a, b, in->get<std::int32_t>());
+  }
+  e->mesh.face_normals = in->getPoints();
+  e->orientation.components = in->get<std::uint64_t>();
+  e->orientation.flipped_faces = in->get<std::uint64_t>();
+  e->orientation.reversed_components = in->get<std::uint64_t>();
+  MeshTopology& t = e->topology;
+  for (std::size_t* count : {&t.edges,
+                             &t.boundary_edges,
+                             &t.non_manifold_edges,
+                             &t.misoriented_edges,
+                             &t.degenerate_faces,
+                             &t.unused_vertices}) {
+    *count = in->get<std::uint64_t>();
+  }
+  t.signed_volume = in->get<double>();
+  t.area = in->get<double>();
+  e->face_border_edges = in->getVector<std::uint8_t>();
+  const auto warnings = in->get<std::uint64_t>();
+  for (std::uint64_t i = 0; i < warnings && in->ok(); ++i) {
+    e->load_warnings.push_back(in->getText());
+  }
+  e->descriptor_key = in->getText();
+}
+
+// Every face indexes a vertex and has its normal, so no later stage indexes past the mesh.
+bool consistent(const TriangleMesh& mesh, const std::vector<std::uint8_t>& border_edges) {
+  if (mesh.face_normals.size() != mesh.faces.size() ||
+      !(border_edges.empty() || border_edges.size() == mesh.faces.size())) {
+    return false;
+  }
+  const auto vertices = static_cast<std::int64_t>(mesh.vertices.size());
+  return std::all_of(mesh.faces.begin(), mesh.faces.end(), [vertices](const Eigen::Vector3i& f) {
+    return f.minCoeff() >= 0 && f.maxCoeff() < vertices;
+  });
 }
 
 DescriptorResult getDescriptors(Reader* in) {
@@ -288,14 +365,24 @@ std::string modelCacheFile(const std::string& directory, const std::string& key)
   return (std::filesystem::path(directory) / (key + ".fimodel")).string();
 }
 
+std::string modelFileKey(std::string_view file_bytes,
+                         double scale,
+                         const std::string& settings_key) {
+  ContentHash hash;
+  hash.addBytes(file_bytes.data(), file_bytes.size());
+  hash.add(scale);
+  hash.addText(settings_key);
+  return hash.hex();
+}
+
 Status writeModelCache(const std::string& directory,
                        const std::string& key,
-                       const DescriptorResult& descriptors,
-                       const std::vector<Symmetry>& symmetries) {
+                       const ModelCacheEntry& entry) {
   Writer payload;
-  putDescriptors(descriptors, &payload);
-  payload.put<std::uint64_t>(symmetries.size());
-  for (const Symmetry& symmetry : symmetries) {
+  putPrepared(entry, &payload);
+  putDescriptors(entry.descriptors, &payload);
+  payload.put<std::uint64_t>(entry.symmetries.size());
+  for (const Symmetry& symmetry : entry.symmetries) {
     for (int i = 0; i < 16; ++i) {
       payload.put(symmetry.S.matrix().data()[i]);
     }
@@ -349,9 +436,8 @@ ModelCacheRead readModelCache(const std::string& directory, const std::string& k
     read.status = Status::failure(StatusCode::kInvalidInput, "no model cache file '" + file + "'");
     return read;
   }
-  std::ifstream in(file, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.eof() && in.fail()) {
+  std::string bytes;
+  if (!io_internal::readWholeFile(file, &bytes).ok()) {
     return unusable(file, "it cannot be read");
   }
   Reader header(bytes.data(), bytes.size());
@@ -383,6 +469,7 @@ ModelCacheRead readModelCache(const std::string& directory, const std::string& k
   }
   Reader payload(bytes.data() + start, size);
   ModelCacheEntry entry;
+  getPrepared(&payload, &entry);
   entry.descriptors = getDescriptors(&payload);
   const auto symmetries = payload.get<std::uint64_t>();
   for (std::uint64_t s = 0; s < symmetries && payload.ok(); ++s) {
@@ -393,7 +480,8 @@ ModelCacheRead readModelCache(const std::string& directory, const std::string& k
     symmetry.score = payload.get<double>();
     entry.symmetries.push_back(symmetry);
   }
-  if (!payload.ok() || !payload.atEnd() || !consistent(entry.descriptors)) {
+  if (!payload.ok() || !payload.atEnd() || !consistent(entry.descriptors) ||
+      !consistent(entry.mesh, entry.face_border_edges)) {
     return unusable(file, "its contents do not fit together");
   }
   ModelCacheRead read;

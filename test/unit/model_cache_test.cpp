@@ -6,10 +6,12 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "freeform_inspection/io.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
 #include "freeform_inspection/synthetic_scan.h"
@@ -64,6 +66,30 @@ void expectSameDescriptors(const DescriptorResult& a, const DescriptorResult& b)
   EXPECT_EQ(a.warnings, b.warnings);
 }
 
+// The cache file a load of `path` at `scale` with the default settings uses.
+std::string cacheFileOf(const std::string& dir, const std::string& path, double scale) {
+  return modelCacheFile(dir, modelFileKey(readBytes(path), scale, descriptorSettingsKey({})));
+}
+
+// The prepared mesh and what was found about it, compared exactly.
+void expectSameMesh(const Model& a, const Model& b) {
+  EXPECT_EQ(a.mesh().vertices, b.mesh().vertices);
+  EXPECT_EQ(a.mesh().faces, b.mesh().faces);
+  EXPECT_EQ(a.mesh().face_normals, b.mesh().face_normals);
+  EXPECT_EQ(a.faceBorderEdges(), b.faceBorderEdges());
+  EXPECT_EQ(a.orientation().components, b.orientation().components);
+  EXPECT_EQ(a.orientation().flipped_faces, b.orientation().flipped_faces);
+  EXPECT_EQ(a.orientation().reversed_components, b.orientation().reversed_components);
+  EXPECT_EQ(a.topology().edges, b.topology().edges);
+  EXPECT_EQ(a.topology().boundary_edges, b.topology().boundary_edges);
+  EXPECT_EQ(a.topology().degenerate_faces, b.topology().degenerate_faces);
+  EXPECT_EQ(a.topology().signed_volume, b.topology().signed_volume);
+  EXPECT_EQ(a.topology().area, b.topology().area);
+  EXPECT_EQ(a.bounds().min, b.bounds().min);
+  EXPECT_EQ(a.bounds().max, b.bounds().max);
+  EXPECT_EQ(a.descriptorKey(), b.descriptorKey());
+}
+
 const Model& blade() {
   static const std::shared_ptr<const Model> kModel = [] {
     const ModelLoadResult loaded = loadModel(kBlade, 0.001, "blade");
@@ -76,12 +102,13 @@ const Model& blade() {
 TEST(ModelCache, AnEntryReadsBackBitForBit) {
   const std::string dir = freshDirectory("round_trip");
   ASSERT_TRUE(
-      writeModelCache(dir, blade().descriptorKey(), blade().descriptors(), blade().symmetries())
-          .ok());
-  const ModelCacheRead read = readModelCache(dir, blade().descriptorKey());
+      writeModelCache(dir, "0011223344556677", blade().cacheEntry({"a load warning"})).ok());
+  const ModelCacheRead read = readModelCache(dir, "0011223344556677");
   ASSERT_TRUE(read.status.ok()) << read.status.message;
   ASSERT_TRUE(read.entry.has_value());
+  EXPECT_EQ(read.entry->load_warnings, std::vector<std::string>{"a load warning"});
   expectSameDescriptors(read.entry->descriptors, blade().descriptors());
+  expectSameMesh(Model(*read.entry, "blade", kBlade, DescriptorConfig()), blade());
   ASSERT_EQ(read.entry->symmetries.size(), blade().symmetries().size());
   for (std::size_t s = 0; s < blade().symmetries().size(); ++s) {
     EXPECT_EQ(read.entry->symmetries[s].S.matrix(), blade().symmetries()[s].S.matrix());
@@ -95,12 +122,13 @@ TEST(ModelCache, SecondLoadComesFromTheCacheAndInspectsTheSame) {
   ASSERT_TRUE(first.status.ok()) << first.status.message;
   EXPECT_FALSE(first.model->fromCache());
   EXPECT_TRUE(first.warnings.empty());
-  EXPECT_TRUE(std::filesystem::exists(modelCacheFile(dir, first.model->descriptorKey())));
+  EXPECT_TRUE(std::filesystem::exists(cacheFileOf(dir, kBlade, 0.001)));
   const ModelLoadResult second = loadModel(kBlade, 0.001, "blade", DescriptorConfig(), dir);
   ASSERT_TRUE(second.status.ok()) << second.status.message;
   EXPECT_TRUE(second.model->fromCache());
   EXPECT_TRUE(second.warnings.empty());
   expectSameDescriptors(second.model->descriptors(), first.model->descriptors());
+  expectSameMesh(*second.model, *first.model);
   // The same scan inspected with either model: the same pose and numbers to the last bit.
   SyntheticScanConfig config;
   config.points = 8000;
@@ -121,15 +149,53 @@ TEST(ModelCache, SecondLoadComesFromTheCacheAndInspectsTheSame) {
   ASSERT_TRUE(third.status.ok()) << third.status.message;
   EXPECT_FALSE(third.model->fromCache());
   EXPECT_NE(third.model->descriptorKey(), first.model->descriptorKey());
+  // Another unit scale is another key too.
+  EXPECT_FALSE(loadModel(kBlade, 0.0254, "blade", DescriptorConfig(), dir).model->fromCache());
+}
+
+// What loading the file said, and what was turned on it, is said again when it comes from the
+// cache: a CAD with an inward face and a triangle whose corners coincide.
+TEST(ModelCache, ACachedModelSaysWhatItsFileSaid) {
+  const std::string dir = freshDirectory("warnings");
+  std::filesystem::create_directories(dir);
+  TriangleMesh mesh = loadMesh(kBlade, 1.0).mesh;
+  std::swap(mesh.faces[7][1], mesh.faces[7][2]);
+  mesh.faces.emplace_back(mesh.faces[3][0], mesh.faces[3][0], mesh.faces[3][1]);
+  mesh.face_normals.emplace_back(Eigen::Vector3d::Zero());
+  const std::string path = dir + "/flawed.stl";
+  ASSERT_TRUE(saveMeshStl(path, mesh).ok());
+  const ModelLoadResult first =
+      loadModel(path, 0.001, "flawed", DescriptorConfig(), dir + "/cache");
+  ASSERT_TRUE(first.status.ok()) << first.status.message;
+  ASSERT_FALSE(first.model->fromCache());
+  ASSERT_EQ(first.warnings.size(), 2u);
+  EXPECT_NE(first.warnings[0].find("dropped 1 STL triangles"), std::string::npos)
+      << first.warnings[0];
+  EXPECT_NE(first.warnings[1].find("1 faces were wound inward"), std::string::npos)
+      << first.warnings[1];
+  const ModelLoadResult second =
+      loadModel(path, 0.001, "flawed", DescriptorConfig(), dir + "/cache");
+  ASSERT_TRUE(second.status.ok()) << second.status.message;
+  EXPECT_TRUE(second.model->fromCache());
+  EXPECT_EQ(second.warnings, first.warnings);
+  expectSameMesh(*second.model, *first.model);
+  // The file changed (one vertex moved by a micrometre): its old entry is not used.
+  mesh.vertices[0].x() += 0.001;
+  ASSERT_TRUE(saveMeshStl(path, mesh).ok());
+  const ModelLoadResult changed =
+      loadModel(path, 0.001, "flawed", DescriptorConfig(), dir + "/cache");
+  ASSERT_TRUE(changed.status.ok()) << changed.status.message;
+  EXPECT_FALSE(changed.model->fromCache());
+  EXPECT_NE(changed.model->mesh().vertices, first.model->mesh().vertices);
 }
 
 TEST(ModelCache, MissingDamagedAndForeignFilesAreRefusedWithAReason) {
   const std::string dir = freshDirectory("refused");
-  const std::string key = blade().descriptorKey();
+  const std::string key = "8899aabbccddeeff";
   const ModelCacheRead missing = readModelCache(dir, key);
   EXPECT_TRUE(missing.missing);
   EXPECT_FALSE(missing.entry.has_value());
-  ASSERT_TRUE(writeModelCache(dir, key, blade().descriptors(), blade().symmetries()).ok());
+  ASSERT_TRUE(writeModelCache(dir, key, blade().cacheEntry({})).ok());
   const std::string file = modelCacheFile(dir, key);
   const std::string good = readBytes(file);
   const auto refusedFor = [&](const std::string& bytes, const std::string& reason) {
@@ -165,19 +231,27 @@ TEST(ModelCache, MissingDamagedAndForeignFilesAreRefusedWithAReason) {
   refusedFor(other_version, "written by version");
   // Whole and checksummed, but a graph whose links point past its cells (a writer's bug): no
   // later stage may index with it.
-  DescriptorResult broken = blade().descriptors();
-  broken.graph.neighbours.front() = static_cast<int>(broken.graph.size());
-  ASSERT_TRUE(writeModelCache(dir, "feedfacefeedface", broken, {}).ok());
+  ModelCacheEntry broken = blade().cacheEntry({});
+  broken.descriptors.graph.neighbours.front() = static_cast<int>(broken.descriptors.graph.size());
+  ASSERT_TRUE(writeModelCache(dir, "feedfacefeedface", broken).ok());
   const ModelCacheRead inconsistent = readModelCache(dir, "feedfacefeedface");
   EXPECT_FALSE(inconsistent.entry.has_value());
   EXPECT_NE(inconsistent.status.message.find("do not fit together"), std::string::npos)
       << inconsistent.status.message;
+  // ... or a face whose corner is past the vertices.
+  ModelCacheEntry past = blade().cacheEntry({});
+  past.mesh.faces.back()[2] = static_cast<int>(past.mesh.vertices.size());
+  ASSERT_TRUE(writeModelCache(dir, "feedfacefeedfac0", past).ok());
+  const ModelCacheRead outside = readModelCache(dir, "feedfacefeedfac0");
+  EXPECT_FALSE(outside.entry.has_value());
+  EXPECT_NE(outside.status.message.find("do not fit together"), std::string::npos)
+      << outside.status.message;
 }
 
 TEST(ModelCache, UnusableCacheCostsAWarningNeverTheLoad) {
   const std::string dir = freshDirectory("unusable");
   ASSERT_TRUE(loadModel(kBlade, 0.001, "blade", DescriptorConfig(), dir).status.ok());
-  const std::string file = modelCacheFile(dir, blade().descriptorKey());
+  const std::string file = cacheFileOf(dir, kBlade, 0.001);
   writeBytes(file, "damaged");
   const ModelLoadResult damaged = loadModel(kBlade, 0.001, "blade", DescriptorConfig(), dir);
   ASSERT_TRUE(damaged.status.ok()) << damaged.status.message;

@@ -13,7 +13,9 @@
 #include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
 
-// PCL headers are slow to compile: this is the only file of the library that includes them.
+// PCL headers are slow to compile and PCL's io pulls VTK and OpenNI (about 70 shared libraries,
+// 40 ms at every process start): this file is the only one that includes them, and it is built
+// as a module loaded on the first PCD read (pcd_module.cpp), not into the core library.
 
 namespace freeform_inspection {
 namespace io_internal {
@@ -152,7 +154,7 @@ Status checkHeaderLayout(const std::string& path,
 
 }  // namespace
 
-Status readPcd(const std::string& path, RawGeometry* out) {
+Status readPcdWithPcl(const std::string& path, RawGeometry* out) {
   const auto cannot_read = [&path](const std::string& why) {
     return Status::failure(StatusCode::kInvalidInput, "cannot read PCD '" + path + "': " + why);
   };
@@ -209,3 +211,10 @@ Status readPcd(const std::string& path, RawGeometry* out) {
 
 }  // namespace io_internal
 }  // namespace freeform_inspection
+
+// The module's one entry point, looked up by name (pcd_module.cpp).
+extern "C" void freeform_inspection_read_pcd(const std::string* path,
+                                             freeform_inspection::io_internal::RawGeometry* out,
+                                             freeform_inspection::Status* status) {
+  *status = freeform_inspection::io_internal::readPcdWithPcl(*path, out);
+}

@@ -39,8 +39,11 @@ Status readPly(const std::string& path, std::string_view bytes, RawGeometry* out
 Status readObj(const std::string& path, std::string_view bytes, RawGeometry* out);
 
 /// PCD through PCL (ascii, binary, binary_compressed); float or double x/y/z. Sets width and
-/// height for an organized cloud (HEIGHT > 1).
+/// height for an organized cloud (HEIGHT > 1). Loads the PCD module on first use.
 Status readPcd(const std::string& path, RawGeometry* out);
+
+/// The PCL reader itself, inside the PCD module (pcd_reader.cpp).
+Status readPcdWithPcl(const std::string& path, RawGeometry* out);
 
 }  // namespace io_internal
 }  // namespace freeform_inspection

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include <mutex>
+#include <string>
+
+#include "readers.h"
+#include <dlfcn.h>
+
+// PCL's PCD reader lives in a module of its own (pcd_reader.cpp): linking PCL's io into the core
+// would load VTK and OpenNI into every process, 40 ms before main() on this machine, for a
+// format most runs never read. The module sits beside the object that holds this code (the
+// core library, or the executable when the core is linked statically) and is opened on the
+// first PCD read.
+
+#ifndef FREEFORM_PCD_MODULE_FILE
+#error "FREEFORM_PCD_MODULE_FILE must name the PCD module's file (CMakeLists.txt)"
+#endif
+
+namespace freeform_inspection {
+namespace io_internal {
+namespace {
+
+using ReadPcdEntry = void (*)(const std::string*, RawGeometry*, Status*);
+
+struct PcdModule {
+  ReadPcdEntry read = nullptr;
+  std::string problem;  // why `read` is null
+};
+
+std::string directoryOfThisCode() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&readPcd), &info) == 0 || info.dli_fname == nullptr) {
+    return "";
+  }
+  const std::string file = info.dli_fname;
+  const std::size_t slash = file.rfind('/');
+  return slash == std::string::npos ? "." : file.substr(0, slash);
+}
+
+PcdModule openModule() {
+  PcdModule module;
+  const std::string directory = directoryOfThisCode();
+  if (directory.empty()) {
+    module.problem = "cannot locate the PCD module (dladdr failed)";
+    return module;
+  }
+  const std::string file = directory + "/" + FREEFORM_PCD_MODULE_FILE;
+  // Never closed: the reader's code must stay mapped for the process's lifetime.
+  void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (handle == nullptr) {
+    const char* error = dlerror();
+    module.problem = "cannot load the PCD module: " + std::string(error ? error : file);
+    return module;
+  }
+  module.read = reinterpret_cast<ReadPcdEntry>(dlsym(handle, "freeform_inspection_read_pcd"));
+  if (module.read == nullptr) {
+    module.problem = "the PCD module '" + file + "' has no reader entry";
+  }
+  return module;
+}
+
+}  // namespace
+
+Status readPcd(const std::string& path, RawGeometry* out) {
+  static std::once_flag opened;
+  static PcdModule module;
+  std::call_once(opened, [] { module = openModule(); });
+  if (module.read == nullptr) {
+    return Status::failure(StatusCode::kInvalidInput,
+                           "cannot read PCD '" + path + "': " + module.problem);
+  }
+  Status status;
+  module.read(&path, out, &status);
+  return status;
+}
+
+}  // namespace io_internal
+}  // namespace freeform_inspection
