@@ -3,8 +3,6 @@
 //
 // freeform_inspect: the offline inspection job on files, the same pipeline as the node.
 #include <chrono>
-#include <cstdint>
-#include <cstdlib>
 #include <ctime>
 #include <exception>
 #include <fstream>
@@ -17,14 +15,12 @@
 #include "report_html.h"
 #include "report_json.h"
 #include "report_provenance.h"
-#include <malloc.h>
-#include <sys/mman.h>
-#include <unistd.h>
 
 #include "freeform_inspection/config_yaml.h"
 #include "freeform_inspection/io.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
+#include "freeform_inspection/process_memory.h"
 
 namespace fi = freeform_inspection;
 
@@ -155,37 +151,10 @@ int run(const fi::CliOptions& options) {
   return kExitRan;
 }
 
-// Memory for a one-shot process, set before the first stage runs. The stages allocate and free
-// tens of MB each: glibc hands blocks over 128 kB back to the kernel on free, so the next stage
-// faults the same pages in again, and every first touch of a 4 kB page is a fault of its own
-// (together about 15 % of a run on a virtual machine). So: one heap for every thread, freed
-// memory kept, and the heap reserved in one piece that the kernel backs with 2 MB pages
-// (madvise, as glibc's own glibc.malloc.hugetlb=1 tunable does). Blocks over 32 MB (glibc's
-// ceiling for the threshold) are still mapped and returned; a heap that outgrows the reserve
-// grows in 4 kB pages. Any step that fails leaves the default behaviour, never an error.
-void tuneMemory() {
-  constexpr std::size_t kReserve = std::size_t{256} << 20;
-  constexpr std::uintptr_t kLargePage = std::uintptr_t{2} << 20;
-  mallopt(M_ARENA_MAX, 1);
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  mallopt(M_TOP_PAD, static_cast<int>(kReserve));
-  void* probe = std::malloc(std::size_t{1} << 20);  // more than the heap holds: it grows
-  if (probe == nullptr) {
-    return;
-  }
-  const auto begin = (reinterpret_cast<std::uintptr_t>(probe) + kLargePage - 1) & ~(kLargePage - 1);
-  const auto end = reinterpret_cast<std::uintptr_t>(sbrk(0)) & ~(kLargePage - 1);
-  if (end > begin) {
-    madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-  }
-  std::free(probe);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  tuneMemory();
+  fi::tuneProcessMemory();
   const fi::CliParseResult parsed =
       fi::parseCliOptions(std::vector<std::string>(argv + 1, argv + argc));
   if (!parsed.options) {
