@@ -31,7 +31,6 @@
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/organized_mesh.h"
 #include "freeform_inspection/pipeline.h"
-#include "freeform_inspection/process_memory.h"
 
 namespace fi = freeform_inspection;
 
@@ -158,7 +157,6 @@ fi::TriangleMesh viewAsMesh(const RangeScan& scan, const Eigen::Isometry3d& pose
 }  // namespace
 
 int main(int argc, char** argv) {
-  freeform_inspection::tuneProcessMemory();  // as the CLI runs (process_memory.h)
   if (argc < 2) {
     std::fprintf(stderr, "usage: dragon_eval DIR [--min-surface S] [--step N]\n");
     return 2;

@@ -35,7 +35,6 @@
 
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
-#include "freeform_inspection/process_memory.h"
 #include "freeform_inspection/synthetic_scan.h"
 
 namespace fi = freeform_inspection;
@@ -293,7 +292,6 @@ std::string cpuModel() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  freeform_inspection::tuneProcessMemory();  // as the CLI runs (process_memory.h)
   Options options;
   if (!parse(argc, argv, &options)) {
     std::fprintf(stderr,

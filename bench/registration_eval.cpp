@@ -30,7 +30,6 @@
 #include "freeform_inspection/config_yaml.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
-#include "freeform_inspection/process_memory.h"
 #include "freeform_inspection/synthetic_scan.h"
 #include "freeform_inspection/virtual_scanner.h"
 
@@ -172,7 +171,6 @@ bool parse(int argc, char** argv, Options* options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  freeform_inspection::tuneProcessMemory();  // as the CLI runs (process_memory.h)
   Options options;
   if (!parse(argc, argv, &options)) {
     std::fprintf(stderr,
