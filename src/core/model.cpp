@@ -172,9 +172,9 @@ ModelLoadResult modelOfFile(const std::string& path,
   ModelLoadResult result;
   std::string key;
   if (!cache_directory.empty()) {
-    std::string bytes;
+    io_internal::FileBytes bytes;
     if (io_internal::readWholeFile(path, &bytes).ok()) {
-      key = modelFileKey(bytes, scale, descriptorSettingsKey(descriptor_config));
+      key = modelFileKey(bytes.view(), scale, descriptorSettingsKey(descriptor_config));
     }
   }
   std::string cache_problem;

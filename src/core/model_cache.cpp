@@ -436,10 +436,11 @@ ModelCacheRead readModelCache(const std::string& directory, const std::string& k
     read.status = Status::failure(StatusCode::kInvalidInput, "no model cache file '" + file + "'");
     return read;
   }
-  std::string bytes;
-  if (!io_internal::readWholeFile(file, &bytes).ok()) {
+  io_internal::FileBytes file_bytes;
+  if (!io_internal::readWholeFile(file, &file_bytes).ok()) {
     return unusable(file, "it cannot be read");
   }
+  const std::string_view bytes = file_bytes.view();
   Reader header(bytes.data(), bytes.size());
   const auto magic = header.get<std::array<char, sizeof(kMagic)>>();
   if (!header.ok() || std::memcmp(magic.data(), kMagic, sizeof(kMagic)) != 0) {

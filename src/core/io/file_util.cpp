@@ -62,7 +62,7 @@ Status checkReadableFile(const std::string& path, std::uintmax_t* size) {
   return Status::success();
 }
 
-Status readWholeFile(const std::string& path, std::string* bytes) {
+Status readWholeFile(const std::string& path, FileBytes* bytes) {
   std::uintmax_t size = 0;
   Status status = checkReadableFile(path, &size);
   if (!status.ok()) {
@@ -73,9 +73,10 @@ Status readWholeFile(const std::string& path, std::string* bytes) {
   if (!file) {
     return cannotOpen(path, osReason(errno));
   }
-  bytes->resize(static_cast<std::size_t>(size));
-  const std::size_t got = std::fread(bytes->data(), 1, bytes->size(), file.get());
-  if (got != bytes->size()) {
+  bytes->size = static_cast<std::size_t>(size);
+  bytes->data.reset(new char[bytes->size]);  // default-initialized: fread fills every byte
+  const std::size_t got = std::fread(bytes->data.get(), 1, bytes->size, file.get());
+  if (got != bytes->size) {
     return Status::failure(StatusCode::kInvalidInput,
                            "cannot read '" + path + "': got " + std::to_string(got) + " of " +
                                std::to_string(size) + " bytes");

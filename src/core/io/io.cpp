@@ -63,18 +63,18 @@ Status readRaw(const std::string& path, Format format, RawGeometry* raw) {
       const Status status = io_internal::checkReadableFile(path, &size);
       return status.ok() ? io_internal::readPcd(path, raw) : status;
     }
-    std::string bytes;
+    io_internal::FileBytes bytes;
     const Status status = io_internal::readWholeFile(path, &bytes);
     if (!status.ok()) {
       return status;
     }
     switch (format) {
       case Format::kStl:
-        return io_internal::readStl(path, bytes, raw);
+        return io_internal::readStl(path, bytes.view(), raw);
       case Format::kPly:
-        return io_internal::readPly(path, bytes, raw);
+        return io_internal::readPly(path, bytes.view(), raw);
       case Format::kObj:
-        return io_internal::readObj(path, bytes, raw);
+        return io_internal::readObj(path, bytes.view(), raw);
       case Format::kPcd:
         break;
     }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "binary_util.h"
 #include "checks.h"
@@ -224,6 +225,11 @@ class PlyDataReader {
                      std::to_string(reader_.remaining()) + " bytes of data remain");
     }
     const bool is_vertex = element.name == "vertex";
+    // Each property's vertex slot (x..nz, or none), named once, not for every value.
+    std::vector<int> slot_of(element.properties.size(), -1);
+    for (std::size_t p = 0; is_vertex && p < slot_of.size(); ++p) {
+      slot_of[p] = vertexSlot(element.properties[p].name);
+    }
     if (is_vertex && !reader_.ascii()) {
       out->vertices.reserve(element.count);
       if (has_normals_) {
@@ -232,10 +238,11 @@ class PlyDataReader {
     }
     for (std::size_t record = 0; record < element.count; ++record) {
       double slots[6] = {0, 0, 0, 0, 0, 0};
-      for (const PlyProperty& property : element.properties) {
-        Status status = property.is_list
-                            ? readList(element, property, record, out)
-                            : readScalar(element, property, record, is_vertex ? slots : nullptr);
+      for (std::size_t p = 0; p < element.properties.size(); ++p) {
+        const PlyProperty& property = element.properties[p];
+        double* slot = slot_of[p] >= 0 ? &slots[slot_of[p]] : nullptr;
+        Status status = property.is_list ? readList(element, property, record, out)
+                                         : readScalar(element, property, record, slot);
         if (!status.ok()) {
           return status;
         }
@@ -265,17 +272,15 @@ class PlyDataReader {
                    element.name + "' record " + std::to_string(record));
   }
 
+  // Reads one value into `slot` (nowhere when null: a property the geometry does not use).
   Status readScalar(const PlyElement& element,
                     const PlyProperty& property,
                     std::size_t record,
-                    double* slots) {
+                    double* slot) {
     double value = 0.0;
     Status status = readValue(property.type, element, record, &value);
-    if (status.ok() && slots != nullptr) {
-      const int slot = vertexSlot(property.name);
-      if (slot >= 0) {
-        slots[slot] = value;
-      }
+    if (status.ok() && slot != nullptr) {
+      *slot = value;
     }
     return status;
   }
