@@ -5,6 +5,7 @@
 // stderr for bad input or usage.
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -24,6 +25,9 @@
 #endif
 #ifndef FREEFORM_DATA_DIR
 #error "FREEFORM_DATA_DIR must name the package's data directory"
+#endif
+#ifndef FREEFORM_CORE_PATH
+#error "FREEFORM_CORE_PATH must name the core library's file"
 #endif
 
 namespace {
@@ -327,6 +331,38 @@ TEST(Cli, ModelCacheGivesTheSameResultAndADamagedFileIsComputedAgain) {
   EXPECT_TRUE(cacheFiles(default_cache).empty());
   ASSERT_EQ(runCli(args).exit_code, 0);
   EXPECT_EQ(cacheFiles(default_cache).size(), 1u);
+}
+
+// A PCD scan is read by PCL through the module the core opens on the first PCD read. The same
+// run from a copy of the program and its core library, with no module beside them: exit 2, one
+// line that names the module, never a crash.
+TEST(Cli, PcdScanReadThroughItsModuleAndAClearErrorWithoutIt) {
+  const freeform_inspection::ScanLoadResult scan = freeform_inspection::loadScan(kScan, 1.0);
+  ASSERT_TRUE(scan.status.ok()) << scan.status.message;
+  const std::string pcd = temp("scan.pcd");
+  ASSERT_TRUE(freeform_inspection::saveScanPcd(pcd, scan.scan).ok());
+  const std::string args = "--cad " + kBlade + " --cad-scale 0.001 --scan " + pcd;
+  const CliRun run = runCli(args);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["status"], "ok");
+
+  namespace fs = std::filesystem;
+  const fs::path alone = temp("without_module");
+  fs::remove_all(alone);
+  fs::create_directories(alone);
+  const fs::path program = alone / fs::path(FREEFORM_CLI_PATH).filename();
+  fs::copy_file(FREEFORM_CLI_PATH, program);
+  fs::copy_file(FREEFORM_CORE_PATH, alone / fs::path(FREEFORM_CORE_PATH).filename());
+  const std::string err_path = temp("alone_stderr.txt");
+  const std::string command = "LD_LIBRARY_PATH=" + alone.string() +
+                              " XDG_CACHE_HOME=" + kDefaultCache + " " + program.string() + " " +
+                              args + " > /dev/null 2>" + err_path;
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  const std::string err = slurp(err_path);
+  EXPECT_EQ(lineCount(err), 1) << err;
+  EXPECT_NE(err.find("cannot load the PCD module"), std::string::npos) << err;
 }
 
 }  // namespace
