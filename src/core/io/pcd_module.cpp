@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Copyright 2026 The freeform_inspection authors
+#include <cstdint>
+#include <filesystem>
 #include <mutex>
 #include <string>
+#include <system_error>
 
+#include "pcd_header.h"
 #include "readers.h"
 #include <dlfcn.h>
 
@@ -20,7 +24,7 @@ namespace freeform_inspection {
 namespace io_internal {
 namespace {
 
-using ReadPcdEntry = void (*)(const std::string*, RawGeometry*, Status*);
+using ReadPcdEntry = void (*)(const std::string*, const PcdHeader*, RawGeometry*, Status*);
 
 struct PcdModule {
   ReadPcdEntry read = nullptr;
@@ -62,6 +66,21 @@ PcdModule openModule() {
 }  // namespace
 
 Status readPcd(const std::string& path, RawGeometry* out) {
+  // Our own strict reading first: PCL allocates from the header while it parses it.
+  PcdHeader header;
+  Status status = parsePcdHeader(path, &header);
+  std::error_code ec;
+  const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
+  if (status.ok() && ec) {
+    return Status::failure(StatusCode::kInvalidInput,
+                           "cannot read PCD '" + path + "': " + ec.message());
+  }
+  if (status.ok()) {
+    status = checkPcdDataSize(path, header, file_size);
+  }
+  if (!status.ok()) {
+    return status;
+  }
   static std::once_flag opened;
   static PcdModule module;
   std::call_once(opened, [] { module = openModule(); });
@@ -69,8 +88,11 @@ Status readPcd(const std::string& path, RawGeometry* out) {
     return Status::failure(StatusCode::kInvalidInput,
                            "cannot read PCD '" + path + "': " + module.problem);
   }
-  Status status;
-  module.read(&path, out, &status);
+  module.read(&path, &header, out, &status);
+  const std::string viewpoint = status.ok() ? pcdViewpointWarning(header) : "";
+  if (!viewpoint.empty()) {
+    out->warnings.push_back(viewpoint);
+  }
   return status;
 }
 

@@ -2,9 +2,7 @@
 // Copyright 2026 The freeform_inspection authors
 #include <cstdint>
 #include <exception>
-#include <filesystem>
 #include <string>
-#include <system_error>
 
 #include "binary_util.h"
 #include "pcd_header.h"
@@ -15,7 +13,8 @@
 
 // PCL headers are slow to compile and PCL's io pulls VTK and OpenNI (about 70 shared libraries,
 // 40 ms at every process start): this file is the only one that includes them, and it is built
-// as a module loaded on the first PCD read (pcd_module.cpp), not into the core library.
+// as a module loaded on the first PCD read (pcd_module.cpp), not into the core library. It uses
+// nothing of the core library but header-only code, so a static core is not linked into it twice.
 
 namespace freeform_inspection {
 namespace io_internal {
@@ -154,24 +153,11 @@ Status checkHeaderLayout(const std::string& path,
 
 }  // namespace
 
-Status readPcdWithPcl(const std::string& path, RawGeometry* out) {
+Status readPcdWithPcl(const std::string& path, const PcdHeader& header, RawGeometry* out) {
   const auto cannot_read = [&path](const std::string& why) {
     return Status::failure(StatusCode::kInvalidInput, "cannot read PCD '" + path + "': " + why);
   };
-  // Our own strict reading first: PCL allocates from the header while it parses it.
-  PcdHeader header;
-  Status status = parsePcdHeader(path, &header);
-  std::error_code ec;
-  const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
-  if (status.ok() && ec) {
-    return cannot_read(ec.message());
-  }
-  if (status.ok()) {
-    status = checkPcdDataSize(path, header, file_size);
-  }
-  if (!status.ok()) {
-    return status;
-  }
+  Status status;
   pcl::PCLPointCloud2 cloud;
   Eigen::Vector4f origin;  // PCL leaves parts unset on a malformed VIEWPOINT: not used
   Eigen::Quaternionf orientation;
@@ -201,20 +187,17 @@ Status readPcdWithPcl(const std::string& path, RawGeometry* out) {
   } catch (const std::exception& e) {
     return cannot_read(e.what());
   }
-  status = extract(path, cloud, out);
-  const std::string viewpoint = status.ok() ? pcdViewpointWarning(header) : "";
-  if (!viewpoint.empty()) {
-    out->warnings.push_back(viewpoint);
-  }
-  return status;
+  return extract(path, cloud, out);
 }
 
 }  // namespace io_internal
 }  // namespace freeform_inspection
 
 // The module's one entry point, looked up by name (pcd_module.cpp).
-extern "C" void freeform_inspection_read_pcd(const std::string* path,
-                                             freeform_inspection::io_internal::RawGeometry* out,
-                                             freeform_inspection::Status* status) {
-  *status = freeform_inspection::io_internal::readPcdWithPcl(*path, out);
+extern "C" void freeform_inspection_read_pcd(
+    const std::string* path,
+    const freeform_inspection::io_internal::PcdHeader* header,
+    freeform_inspection::io_internal::RawGeometry* out,
+    freeform_inspection::Status* status) {
+  *status = freeform_inspection::io_internal::readPcdWithPcl(*path, *header, out);
 }

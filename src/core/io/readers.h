@@ -42,8 +42,11 @@ Status readObj(const std::string& path, std::string_view bytes, RawGeometry* out
 /// height for an organized cloud (HEIGHT > 1). Loads the PCD module on first use.
 Status readPcd(const std::string& path, RawGeometry* out);
 
-/// The PCL reader itself, inside the PCD module (pcd_reader.cpp).
-Status readPcdWithPcl(const std::string& path, RawGeometry* out);
+struct PcdHeader;
+
+/// The PCL reader itself, inside the PCD module (pcd_reader.cpp), for a file whose `header`
+/// readPcd() has checked.
+Status readPcdWithPcl(const std::string& path, const PcdHeader& header, RawGeometry* out);
 
 }  // namespace io_internal
 }  // namespace freeform_inspection
