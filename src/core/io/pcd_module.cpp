@@ -9,6 +9,7 @@
 #include "pcd_header.h"
 #include "readers.h"
 #include <dlfcn.h>
+#include <link.h>
 
 // PCL's PCD reader lives in a module of its own (pcd_reader.cpp): linking PCL's io into the core
 // would load VTK and OpenNI into every process, 40 ms before main() on this machine, for a
@@ -33,12 +34,21 @@ struct PcdModule {
 
 std::string directoryOfThisCode() {
   Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&readPcd), &info) == 0 || info.dli_fname == nullptr) {
+  link_map* object = nullptr;
+  if (dladdr1(reinterpret_cast<void*>(&readPcd),
+              &info,
+              reinterpret_cast<void**>(&object),
+              RTLD_DL_LINKMAP) == 0 ||
+      object == nullptr) {
     return "";
   }
-  const std::string file = info.dli_fname;
-  const std::size_t slash = file.rfind('/');
-  return slash == std::string::npos ? "." : file.substr(0, slash);
+  // The main program has no name of its own here (dladdr would give argv[0], which may be a bare
+  // name found on PATH): its file is /proc/self/exe.
+  std::error_code ec;
+  const std::filesystem::path file = object->l_name[0] != '\0'
+                                         ? std::filesystem::path(object->l_name)
+                                         : std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec || !file.has_parent_path() ? "" : file.parent_path().string();
 }
 
 PcdModule openModule() {
