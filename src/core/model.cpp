@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "io/file_util.h"
+#include "io/mesh_bytes.h"
 
 #include "freeform_inspection/io.h"
 
@@ -162,7 +163,8 @@ namespace {
 
 // The model of `path` from the cache entry of its bytes, or computed (and the entry written). A
 // cache file that exists but cannot be used, or cannot be written, is said in `cache_notes`; a
-// missing one is the first load. Without a cache directory the file is read once, by loadMesh.
+// missing one is the first load. The file is read once: with a cache directory the bytes that
+// give the key are the bytes parsed on a miss, so an entry never holds another content's mesh.
 ModelLoadResult modelOfFile(const std::string& path,
                             double scale,
                             const std::string& id,
@@ -171,11 +173,9 @@ ModelLoadResult modelOfFile(const std::string& path,
                             std::vector<std::string>* cache_notes) {
   ModelLoadResult result;
   std::string key;
-  if (!cache_directory.empty()) {
-    io_internal::FileBytes bytes;
-    if (io_internal::readWholeFile(path, &bytes).ok()) {
-      key = modelFileKey(bytes.view(), scale, descriptorSettingsKey(descriptor_config));
-    }
+  io_internal::FileBytes bytes;
+  if (!cache_directory.empty() && io_internal::readWholeFile(path, &bytes).ok()) {
+    key = modelFileKey(bytes.view(), scale, descriptorSettingsKey(descriptor_config));
   }
   std::string cache_problem;
   if (!key.empty()) {
@@ -190,7 +190,10 @@ ModelLoadResult modelOfFile(const std::string& path,
       cache_problem = read.status.message;
     }
   }
-  MeshLoadResult loaded = loadMesh(path, scale);
+  // Without a key (no cache directory, or the read failed: loadMesh says why) from the path.
+  MeshLoadResult loaded = key.empty() ? loadMesh(path, scale)
+                                      : io_internal::loadMeshFromBytes(path, bytes.view(), scale);
+  bytes = io_internal::FileBytes{};
   result.warnings = loaded.warnings;
   if (!loaded.status.ok()) {
     result.status = loaded.status;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "../../src/core/io/mesh_bytes.h"
 #include "io_test_util.h"
 #include <gtest/gtest.h>
 
@@ -84,6 +85,40 @@ TEST(FixtureFiles, AsciiPcd) {
   EXPECT_EQ(result.non_finite_removed, 1u);
   ASSERT_EQ(result.scan.points.size(), 3u);
   EXPECT_DOUBLE_EQ(result.scan.points[2].z(), 0.009);
+}
+
+// The model cache hashes a CAD file's bytes and, on a miss, parses those same bytes: whatever the
+// file holds by then, the mesh is the one of the bytes given, and a bad one is named by the path.
+TEST(FixtureFiles, AMeshParsedFromBytesAlreadyReadIsThoseBytesMesh) {
+  for (const char* name : {"cube_ascii.stl",
+                           "cube_binary_solid_header.stl",
+                           "tetra_double_binary.ply",
+                           "cube_quads_big_endian.ply",
+                           "cube_quads.obj"}) {
+    const MeshLoadResult from_path = loadMesh(fixture(name), 0.001);
+    const MeshLoadResult from_bytes =
+        io_internal::loadMeshFromBytes(fixture(name), io_test::readBytes(fixture(name)), 0.001);
+    ASSERT_TRUE(from_bytes.status.ok()) << name << ": " << from_bytes.status.message;
+    EXPECT_EQ(from_bytes.mesh.vertices, from_path.mesh.vertices) << name;
+    EXPECT_EQ(from_bytes.mesh.faces, from_path.mesh.faces) << name;
+    EXPECT_EQ(from_bytes.file_faces, from_path.file_faces) << name;
+    EXPECT_EQ(from_bytes.warnings, from_path.warnings) << name;
+  }
+  // The file at the path now holds a tetrahedron; the bytes read before were the cube's.
+  const MeshLoadResult cube = io_internal::loadMeshFromBytes(
+      fixture("tetra_double_binary.ply"), io_test::readBytes(fixture("cube_quads.obj")), 0.001);
+  EXPECT_FALSE(cube.status.ok()) << "OBJ bytes parsed as the PLY the extension names";
+  EXPECT_NE(cube.status.message.find("tetra_double_binary.ply"), std::string::npos)
+      << cube.status.message;
+  io_test::TempDir dir;
+  const std::string path = dir.file("part.obj");
+  const std::string cube_bytes = io_test::readBytes(fixture("cube_quads.obj"));
+  io_test::writeBytes(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const MeshLoadResult replaced = io_internal::loadMeshFromBytes(path, cube_bytes, 0.001);
+  ASSERT_TRUE(replaced.status.ok()) << replaced.status.message;
+  EXPECT_EQ(replaced.file_faces, 6u);
+  io_test::expectCentimetreCube(replaced.mesh);
+  EXPECT_EQ(loadMesh(path, 0.001).mesh.faces.size(), 1u);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 
 #include "checks.h"
 #include "file_util.h"
+#include "mesh_bytes.h"
 #include "readers.h"
 
 #include "freeform_inspection/mesh.h"
@@ -55,30 +56,40 @@ Status formatOf(const std::string& path, bool allow_pcd, Format* format) {
   return Status::success();
 }
 
-// Reads any format into file-unit geometry; exceptions become a Status here.
-Status readRaw(const std::string& path, Format format, RawGeometry* raw) {
+// Parses a file's bytes (any format but PCD, which PCL reads from the path itself) into
+// file-unit geometry.
+Status parseRaw(const std::string& path, Format format, std::string_view bytes, RawGeometry* raw) {
+  switch (format) {
+    case Format::kStl:
+      return io_internal::readStl(path, bytes, raw);
+    case Format::kPly:
+      return io_internal::readPly(path, bytes, raw);
+    case Format::kObj:
+      return io_internal::readObj(path, bytes, raw);
+    case Format::kPcd:
+      break;
+  }
+  return invalid("internal error: unhandled format of '" + path + "'");
+}
+
+// Reads any format into file-unit geometry, from `bytes` already read when given (not PCD);
+// exceptions become a Status here.
+Status readRaw(const std::string& path,
+               Format format,
+               const std::string_view* bytes,
+               RawGeometry* raw) {
   try {
+    if (bytes != nullptr) {
+      return parseRaw(path, format, *bytes, raw);
+    }
     if (format == Format::kPcd) {
       std::uintmax_t size = 0;
       const Status status = io_internal::checkReadableFile(path, &size);
       return status.ok() ? io_internal::readPcd(path, raw) : status;
     }
-    io_internal::FileBytes bytes;
-    const Status status = io_internal::readWholeFile(path, &bytes);
-    if (!status.ok()) {
-      return status;
-    }
-    switch (format) {
-      case Format::kStl:
-        return io_internal::readStl(path, bytes.view(), raw);
-      case Format::kPly:
-        return io_internal::readPly(path, bytes.view(), raw);
-      case Format::kObj:
-        return io_internal::readObj(path, bytes.view(), raw);
-      case Format::kPcd:
-        break;
-    }
-    return invalid("internal error: unhandled format of '" + path + "'");
+    io_internal::FileBytes read;
+    const Status status = io_internal::readWholeFile(path, &read);
+    return status.ok() ? parseRaw(path, format, read.view(), raw) : status;
   } catch (const std::bad_alloc&) {
     return invalid("out of memory reading '" + path + "'");
   } catch (const std::exception& e) {
@@ -160,7 +171,9 @@ void normalizeNormals(const Points& points, Points* normals, std::vector<std::st
   }
 }
 
-MeshLoadResult loadMeshUnguarded(const std::string& path, double scale) {
+MeshLoadResult loadMeshUnguarded(const std::string& path,
+                                 const std::string_view* bytes,
+                                 double scale) {
   MeshLoadResult result;
   Format format = Format::kStl;
   result.status = io_internal::checkScale(scale);
@@ -169,7 +182,7 @@ MeshLoadResult loadMeshUnguarded(const std::string& path, double scale) {
   }
   RawGeometry raw;
   if (result.status.ok()) {
-    result.status = readRaw(path, format, &raw);
+    result.status = readRaw(path, format, bytes, &raw);
   }
   if (!result.status.ok()) {
     return result;
@@ -221,7 +234,7 @@ ScanLoadResult loadScanUnguarded(const std::string& path, double scale) {
   }
   RawGeometry raw;
   if (result.status.ok()) {
-    result.status = readRaw(path, format, &raw);
+    result.status = readRaw(path, format, nullptr, &raw);
   }
   if (!result.status.ok()) {
     return result;
@@ -263,14 +276,30 @@ ScanLoadResult loadScanUnguarded(const std::string& path, double scale) {
 
 }  // namespace
 
-MeshLoadResult loadMesh(const std::string& path, double scale) {
+namespace {
+
+MeshLoadResult loadMeshGuarded(const std::string& path,
+                               const std::string_view* bytes,
+                               double scale) {
   try {
-    return loadMeshUnguarded(path, scale);
+    return loadMeshUnguarded(path, bytes, scale);
   } catch (const std::exception& e) {
     MeshLoadResult result;
     result.status = invalid("cannot load mesh '" + path + "': " + e.what());
     return result;
   }
+}
+
+}  // namespace
+
+MeshLoadResult loadMesh(const std::string& path, double scale) {
+  return loadMeshGuarded(path, nullptr, scale);
+}
+
+MeshLoadResult io_internal::loadMeshFromBytes(const std::string& path,
+                                              std::string_view bytes,
+                                              double scale) {
+  return loadMeshGuarded(path, &bytes, scale);
 }
 
 ScanLoadResult loadScan(const std::string& path, double scale) {
