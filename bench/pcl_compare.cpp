@@ -11,10 +11,15 @@
 //               [--sets NAME,...] [--cases N] [--first-seed N] [--method both|ours|pcl]
 //               [--noise R] [--partial] [--outliers F] [--points N]   (one custom set instead)
 //               [--no-normals] [--scaling [--sizes N,N,...]] [--json FILE]
+//   pcl_compare --dragon DIR [--min-surface S] [--method both|ours|pcl] [--json FILE]
 //
 // --cad-scale applies to the --cad before it. Sets: full0.5 full1 full2 partial0.5 partial1
 // partial2 outliers20 sparse3k (default: all). --scaling times the first part at each size
 // (full view, 0.5 % noise). --no-normals (or FI_NO_NORMALS set) strips the scanner normals.
+// --dragon runs the real range scans of the Stanford dragon instead (dragon_views.h: each view
+// plays the CAD for the next one, bare points for both methods); --min-surface sets our
+// registration.min_surface_on_cad, as dragon_eval's does (two views share 55–94 % of their
+// surface, which the default 0.8 refuses below it).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -28,6 +33,7 @@
 #include <thread>
 #include <vector>
 
+#include "dragon_views.h"
 #include "pcl_compare_report.h"
 #include "pcl_pipeline.h"
 #include "pose_error.h"
@@ -59,6 +65,9 @@ fi::SyntheticScanConfig scanConfig(double noise, bool partial, double outliers, 
   return config;
 }
 
+// The label of the dragon's set (--dragon).
+const char* const kDragonSet = "dragon range scans, view to next view";
+
 std::vector<CaseSet> standardSets() {
   return {{"full0.5", "full 0.5%", scanConfig(0.005, false, 0.0, 30000)},
           {"full1", "full 1%", scanConfig(0.01, false, 0.0, 30000)},
@@ -88,6 +97,8 @@ struct Options {
   bool scaling = false;
   std::vector<std::size_t> sizes = {10000, 30000, 100000, 300000, 1000000};
   std::string json;
+  std::string dragon_dir;     // --dragon: the real range scans instead of generated cases
+  double min_surface = -1.0;  // --min-surface: ours' registration.min_surface_on_cad (< 0: default)
 };
 
 std::vector<std::string> splitCommas(const std::string& text) {
@@ -140,11 +151,16 @@ bool parse(int argc, char** argv, Options* o) {
       }
     } else if (flag == "--json" && has_value) {
       o->json = argv[++i];
+    } else if (flag == "--dragon" && has_value) {
+      o->dragon_dir = argv[++i];
+    } else if (flag == "--min-surface" && has_value) {
+      o->min_surface = std::atof(argv[++i]);
     } else {
       return false;
     }
   }
-  return !o->parts.empty() && o->cases > 0 && (o->run_ours || o->run_pcl);
+  return (!o->parts.empty() || !o->dragon_dir.empty()) && o->cases > 0 &&
+         (o->run_ours || o->run_pcl);
 }
 
 // Peak resident memory of one phase. Linux resets the high-water mark VmHWM to the current
@@ -227,13 +243,14 @@ void scorePose(const fi::Model& model,
 fb::CaseRecord runOurs(const fi::Model& model,
                        const fi::Scan& scan,
                        const fi::SyntheticScan& generated,
-                       double sigma) {
+                       double sigma,
+                       const fi::PipelineConfig& config) {
   fb::CaseRecord record;
   record.method = "ours";
   PeakMeter meter;
   meter.start();
   const auto start = Clock::now();
-  const fi::InspectionResult result = fi::inspect(model, scan, fi::PipelineConfig());
+  const fi::InspectionResult result = fi::inspect(model, scan, config);
   record.seconds_total = secondsSince(start);
   record.peak_mib = meter.stopMib();
   for (const auto& timing : result.timings) {
@@ -289,6 +306,114 @@ std::string cpuModel() {
   return "unknown";
 }
 
+// PCL's once-per-part preparation of `model`, its time and memory into `prepared`.
+std::unique_ptr<fb::PclRegistration> preparePcl(const fi::Model& model,
+                                                const fb::PclPipelineConfig& config,
+                                                fb::PartRecord* prepared) {
+  PeakMeter meter;
+  meter.start();
+  auto pcl = std::make_unique<fb::PclRegistration>(model.mesh(), config);
+  prepared->pcl_peak_mib = meter.stopMib();
+  prepared->pcl_seconds = pcl->cadStats().seconds;
+  prepared->pcl_dense_points = pcl->cadStats().dense_points;
+  prepared->pcl_feature_points = pcl->cadStats().feature_points;
+  return pcl;
+}
+
+// One case through ours (unless `ours` is null) and PCL (unless `pcl` is null), each record
+// logged as a line on stderr and appended to `records`.
+void runCase(const fi::Model& model,
+             const fi::PipelineConfig* ours,
+             fb::PclRegistration* pcl,
+             const fi::SyntheticScan& generated,
+             const fi::Scan& scan,
+             double sigma,
+             std::uint64_t seed,
+             const std::string& part,
+             const std::string& set,
+             std::vector<fb::CaseRecord>* records) {
+  std::vector<fb::CaseRecord> pair;
+  if (ours != nullptr) {
+    pair.push_back(runOurs(model, scan, generated, sigma, *ours));
+  }
+  if (pcl != nullptr) {
+    pair.push_back(runPcl(pcl, model, scan, generated, sigma, seed));
+  }
+  for (fb::CaseRecord& record : pair) {
+    record.part = part;
+    record.set = set;
+    record.seed = seed;
+    record.points = scan.points.size();
+    std::fprintf(stderr,
+                 "%s | %s | seed %llu | %s %s rot %.3f deg t %.4f %%L rms/σ %.2f %.2f s\n",
+                 record.part.c_str(),
+                 record.set.c_str(),
+                 static_cast<unsigned long long>(record.seed),
+                 record.method.c_str(),
+                 record.status.c_str(),
+                 record.rotation_deg,
+                 record.translation_ratio * 100.0,
+                 record.rms_over_sigma,
+                 record.seconds);
+    records->push_back(record);
+  }
+}
+
+// The Stanford dragon's real range scans: each view the CAD of the next (both methods prepare
+// it like a part), the scan bare points in its own frame (no normals for either method), the
+// truth the turntable's calibration. Real scans have no σ to compare the RMS with.
+bool runDragon(const Options& options,
+               const fi::PipelineConfig& ours_config,
+               std::vector<fb::PartRecord>* parts,
+               std::vector<fb::CaseRecord>* records) {
+  std::vector<fb::DragonPair> pairs;
+  std::string error;
+  if (!fb::readDragonPairs(options.dragon_dir, 1, &pairs, &error)) {
+    std::fprintf(stderr, "pcl_compare: %s\n", error.c_str());
+    return false;
+  }
+  fb::PclPipelineConfig pcl_config;
+  pcl_config.use_scan_normals = false;
+  std::uint64_t seed = options.first_seed;
+  for (const fb::DragonPair& pair : pairs) {
+    fb::PartRecord prepared;
+    prepared.part = pair.cad_view;
+    PeakMeter meter;
+    meter.start();
+    const auto start = Clock::now();
+    const fi::Model model(pair.cad, pair.cad_view, pair.cad_view);
+    if (!model.query().status().ok() || !model.descriptors().status.ok()) {
+      std::fprintf(stderr, "pcl_compare: %s cannot be a CAD\n", pair.cad_view.c_str());
+      return false;
+    }
+    if (options.run_ours) {
+      prepared.ours_seconds = secondsSince(start);
+      prepared.ours_peak_mib = meter.stopMib();
+    }
+    prepared.vertices = model.mesh().vertices.size();
+    prepared.diagonal = model.bounds().diagonal();
+    std::unique_ptr<fb::PclRegistration> pcl;
+    if (options.run_pcl) {
+      pcl = preparePcl(model, pcl_config, &prepared);
+    }
+    parts->push_back(prepared);
+    fi::SyntheticScan truth;
+    truth.scan.points = pair.scan;
+    truth.T_cad_scan = pair.T_cad_scan;
+    runCase(model,
+            options.run_ours ? &ours_config : nullptr,
+            pcl.get(),
+            truth,
+            truth.scan,
+            0.0,
+            seed++,
+            prepared.part,
+            kDragonSet,
+            records);
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -298,11 +423,16 @@ int main(int argc, char** argv) {
                  "usage: pcl_compare --cad FILE [--cad-scale S]... [--sets NAME,...] "
                  "[--cases N] [--first-seed N] [--method both|ours|pcl] [--noise R] [--partial] "
                  "[--outliers F] [--points N] [--no-normals] [--scaling [--sizes N,...]] "
-                 "[--json FILE]\n");
+                 "[--json FILE]\n       pcl_compare --dragon DIR [--min-surface S] "
+                 "[--method both|ours|pcl] [--json FILE]\n");
     return 2;
   }
   std::vector<CaseSet> sets;
-  if (options.scaling) {
+  if (!options.dragon_dir.empty()) {
+    sets.push_back({"dragon", kDragonSet, fi::SyntheticScanConfig()});
+    options.parts.clear();
+    options.cases = 1;  // one scan per view pair
+  } else if (options.scaling) {
     for (const std::size_t size : options.sizes) {
       sets.push_back({"scaling", std::to_string(size), scanConfig(0.005, false, 0.0, size)});
     }
@@ -333,13 +463,20 @@ int main(int argc, char** argv) {
       "per call: VmHWM after resetting it (/proc/self/clear_refs) minus VmRSS before, after "
       "malloc_trim";
   info.cases = options.cases;
-  info.scan_normals = options.scan_normals;
   info.scaling = options.scaling;
+  info.scan_normals = options.scan_normals && options.dragon_dir.empty();
   fb::PclPipelineConfig pcl_config;
   pcl_config.use_scan_normals = options.scan_normals;
+  fi::PipelineConfig ours_config;
+  if (options.min_surface >= 0.0) {
+    ours_config.registration.min_surface_on_cad = options.min_surface;
+  }
 
   std::vector<fb::PartRecord> parts;
   std::vector<fb::CaseRecord> records;
+  if (!options.dragon_dir.empty() && !runDragon(options, ours_config, &parts, &records)) {
+    return 2;
+  }
   for (const Part& part : options.parts) {
     fb::PartRecord prepared;
     prepared.part = fileName(part.path);
@@ -361,12 +498,7 @@ int main(int argc, char** argv) {
     prepared.diagonal = model.bounds().diagonal();
     std::unique_ptr<fb::PclRegistration> pcl;
     if (options.run_pcl) {
-      meter.start();
-      pcl = std::make_unique<fb::PclRegistration>(model.mesh(), pcl_config);
-      prepared.pcl_peak_mib = meter.stopMib();
-      prepared.pcl_seconds = pcl->cadStats().seconds;
-      prepared.pcl_dense_points = pcl->cadStats().dense_points;
-      prepared.pcl_feature_points = pcl->cadStats().feature_points;
+      pcl = preparePcl(model, pcl_config, &prepared);
     }
     std::fprintf(stderr,
                  "# %s: %zu vertices, L = %.4f m; ours load %.2f s, PCL prep %.2f s\n",
@@ -390,32 +522,16 @@ int main(int argc, char** argv) {
         if (!options.scan_normals) {
           scan.normals.clear();
         }
-        const double sigma = config.noise_ratio * prepared.diagonal;
-        std::vector<fb::CaseRecord> pair;
-        if (options.run_ours) {
-          pair.push_back(runOurs(model, scan, generated, sigma));
-        }
-        if (options.run_pcl) {
-          pair.push_back(runPcl(pcl.get(), model, scan, generated, sigma, config.seed));
-        }
-        for (fb::CaseRecord& record : pair) {
-          record.part = prepared.part;
-          record.set = set.label;
-          record.seed = config.seed;
-          record.points = scan.points.size();
-          std::fprintf(stderr,
-                       "%s | %s | seed %llu | %s %s rot %.3f deg t %.4f %%L rms/σ %.2f %.2f s\n",
-                       record.part.c_str(),
-                       record.set.c_str(),
-                       static_cast<unsigned long long>(record.seed),
-                       record.method.c_str(),
-                       record.status.c_str(),
-                       record.rotation_deg,
-                       record.translation_ratio * 100.0,
-                       record.rms_over_sigma,
-                       record.seconds);
-          records.push_back(record);
-        }
+        runCase(model,
+                options.run_ours ? &ours_config : nullptr,
+                pcl.get(),
+                generated,
+                scan,
+                config.noise_ratio * prepared.diagonal,
+                config.seed,
+                prepared.part,
+                set.label,
+                &records);
       }
     }
   }

@@ -18,6 +18,10 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double quantile(std::vector<double> values, double q) {
+  // Unknown values (RMS / σ of a real scan, which has no σ) are left out, not sorted among.
+  values.erase(
+      std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
+      values.end());
   if (values.empty()) {
     return kNaN;
   }
