@@ -35,8 +35,11 @@ class PointIndex {
   /// order, so consecutive searches walk the same branches of the tree.
   std::vector<Neighbour> nearestEach(const Points& queries) const;
 
-  /// All points within `radius` [m], nearest first.
+  /// All points within `radius` [m], nearest first (ties by index).
   std::vector<Neighbour> within(const Eigen::Vector3d& query, double radius) const;
+
+  /// How many points within(query, radius) would return, without gathering or sorting them.
+  std::size_t countWithin(const Eigen::Vector3d& query, double radius) const;
 
   std::size_t size() const;
 

@@ -80,7 +80,7 @@ std::vector<double> pointAreas(const Points& points,
 #pragma omp parallel for schedule(static)
   for (long k = 0; k < count; ++k) {
     const std::size_t i = wanted[static_cast<std::size_t>(k)];
-    const auto inside = static_cast<double>(index->within(points[i], radius).size());
+    const auto inside = static_cast<double>(index->countWithin(points[i], radius));
     area[i] = kPi * radius * radius / std::max(1.0, inside - 0.5);
   }
   return area;

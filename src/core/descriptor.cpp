@@ -345,7 +345,7 @@ void thinForNoise(const Points& points,
   const std::size_t samples = std::min(kSamples, count);
   std::vector<double> within(samples);
   for (std::size_t j = 0; j < samples; ++j) {
-    within[j] = static_cast<double>(index.within(kept[j * count / samples], reach).size());
+    within[j] = static_cast<double>(index.countWithin(kept[j * count / samples], reach));
   }
   std::nth_element(within.begin(), within.begin() + samples / 2, within.end());
   const double median = within[samples / 2];

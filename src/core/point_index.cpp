@@ -202,17 +202,41 @@ std::vector<Neighbour> PointIndex::nearestEach(const Points& queries) const {
   return result;
 }
 
+namespace {
+
+// nanoflann keeps distances strictly below its radius; the nudge makes `within` inclusive.
+double inclusiveSquaredRadius(double radius) {
+  return std::nextafter(radius * radius, std::numeric_limits<double>::infinity());
+}
+
+// A radius search's result set that only counts (nanoflann's result-set interface).
+class CountingResult {
+ public:
+  explicit CountingResult(double squared_radius) : squared_radius_(squared_radius) {}
+  std::size_t size() const { return count_; }
+  bool full() const { return true; }
+  bool addPoint(double distance, std::uint32_t /*index*/) {
+    count_ += distance < squared_radius_ ? 1 : 0;
+    return true;
+  }
+  double worstDist() const { return squared_radius_; }
+
+ private:
+  double squared_radius_;
+  std::size_t count_ = 0;
+};
+
+}  // namespace
+
 std::vector<Neighbour> PointIndex::within(const Eigen::Vector3d& query, double radius) const {
   std::vector<Neighbour> result;
   if (!(radius >= 0.0) || impl_->points.empty() || !query.allFinite()) {
     return result;
   }
-  const double squared_radius = radius * radius;
-  // nanoflann keeps distances strictly below its radius; the nudge makes `within` inclusive.
-  const double search_radius =
-      std::nextafter(squared_radius, std::numeric_limits<double>::infinity());
+  // Unsorted by nanoflann: the sort below orders by (distance, index) whatever order it gets.
   std::vector<std::pair<std::uint32_t, double>> found;
-  impl_->tree->radiusSearch(query.data(), search_radius, found, nanoflann::SearchParams());
+  impl_->tree->radiusSearch(
+      query.data(), inclusiveSquaredRadius(radius), found, nanoflann::SearchParams(0, 0.0f, false));
   std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
     return closerThan(a.second, a.first, b.second, b.first);
   });
@@ -221,6 +245,15 @@ std::vector<Neighbour> PointIndex::within(const Eigen::Vector3d& query, double r
     result.push_back(impl_->neighbour(query, entry.first));
   }
   return result;
+}
+
+std::size_t PointIndex::countWithin(const Eigen::Vector3d& query, double radius) const {
+  if (!(radius >= 0.0) || impl_->points.empty() || !query.allFinite()) {
+    return 0;
+  }
+  CountingResult counted(inclusiveSquaredRadius(radius));
+  impl_->tree->findNeighbors(counted, query.data(), nanoflann::SearchParams());
+  return counted.size();
 }
 
 std::size_t PointIndex::size() const {

@@ -108,6 +108,31 @@ TEST(PointIndex, WithinMatchesBruteForceOnRandomPoints) {
   }
 }
 
+// countWithin counts what within() finds, boundary included: lattice points exactly at the
+// radius (0.5 from a lattice point) and random ones, radius zero, nothing for a bad query.
+TEST(PointIndex, CountWithinIsTheSizeOfWithin) {
+  const Points points = randomPoints(2000, kSeed);
+  const PointIndex index(points);
+  for (const double radius : {0.0, 0.01, 0.1, 0.3, 4.0}) {
+    for (const auto& query : queries(points, kSeed)) {
+      EXPECT_EQ(index.countWithin(query, radius), bruteWithin(points, query, radius).size())
+          << "radius " << radius;
+    }
+  }
+  Points lattice;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      lattice.emplace_back(0.5 * i, 0.5 * j, 0.0);
+    }
+  }
+  const PointIndex grid(lattice);
+  EXPECT_EQ(grid.countWithin(lattice[14], 0.5), 5u);  // itself and its four lattice neighbours
+  EXPECT_EQ(grid.countWithin(lattice[14], 0.5), grid.within(lattice[14], 0.5).size());
+  EXPECT_EQ(grid.countWithin(lattice[0], -1.0), 0u);
+  EXPECT_EQ(grid.countWithin(Eigen::Vector3d(std::nan(""), 0.0, 0.0), 1.0), 0u);
+  EXPECT_EQ(PointIndex(Points()).countWithin(Eigen::Vector3d::Zero(), 1.0), 0u);
+}
+
 TEST(PointIndex, QueryPointItselfComesFirstWithZeroDistance) {
   const Points points = randomPoints(2000, kSeed);
   const PointIndex index(points);
