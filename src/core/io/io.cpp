@@ -85,7 +85,7 @@ Status readRaw(const std::string& path,
     if (format == Format::kPcd) {
       std::uintmax_t size = 0;
       const Status status = io_internal::checkReadableFile(path, &size);
-      return status.ok() ? io_internal::readPcd(path, raw) : status;
+      return status.ok() ? io_internal::readPcd(path, size, raw) : status;
     }
     io_internal::FileBytes read;
     const Status status = io_internal::readWholeFile(path, &read);

@@ -75,16 +75,10 @@ PcdModule openModule() {
 
 }  // namespace
 
-Status readPcd(const std::string& path, RawGeometry* out) {
+Status readPcd(const std::string& path, std::uintmax_t file_size, RawGeometry* out) {
   // Our own strict reading first: PCL allocates from the header while it parses it.
   PcdHeader header;
   Status status = parsePcdHeader(path, &header);
-  std::error_code ec;
-  const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
-  if (status.ok() && ec) {
-    return Status::failure(StatusCode::kInvalidInput,
-                           "cannot read PCD '" + path + "': " + ec.message());
-  }
   if (status.ok()) {
     status = checkPcdDataSize(path, header, file_size);
   }

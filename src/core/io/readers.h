@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,7 +41,8 @@ Status readObj(const std::string& path, std::string_view bytes, RawGeometry* out
 
 /// PCD through PCL (ascii, binary, binary_compressed); float or double x/y/z. Sets width and
 /// height for an organized cloud (HEIGHT > 1). Loads the PCD module on first use.
-Status readPcd(const std::string& path, RawGeometry* out);
+/// `file_size` [bytes] as checkReadableFile() found it.
+Status readPcd(const std::string& path, std::uintmax_t file_size, RawGeometry* out);
 
 struct PcdHeader;
 
