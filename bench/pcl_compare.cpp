@@ -306,13 +306,26 @@ std::string cpuModel() {
   return "unknown";
 }
 
-// PCL's once-per-part preparation of `model`, its time and memory into `prepared`.
-std::unique_ptr<fb::PclRegistration> preparePcl(const fi::Model& model,
-                                                const fb::PclPipelineConfig& config,
-                                                fb::PartRecord* prepared) {
+// The part's record once its model is made (what making it cost counts only when ours runs), and
+// PCL's once-per-part preparation of it when PCL runs, its time and memory into `prepared`.
+std::unique_ptr<fb::PclRegistration> prepareMethods(const fi::Model& model,
+                                                    const Options& options,
+                                                    const fb::PclPipelineConfig& pcl_config,
+                                                    double model_seconds,
+                                                    double model_peak_mib,
+                                                    fb::PartRecord* prepared) {
+  if (options.run_ours) {
+    prepared->ours_seconds = model_seconds;
+    prepared->ours_peak_mib = model_peak_mib;
+  }
+  prepared->vertices = model.mesh().vertices.size();
+  prepared->diagonal = model.bounds().diagonal();
+  if (!options.run_pcl) {
+    return nullptr;
+  }
   PeakMeter meter;
   meter.start();
-  auto pcl = std::make_unique<fb::PclRegistration>(model.mesh(), config);
+  auto pcl = std::make_unique<fb::PclRegistration>(model.mesh(), pcl_config);
   prepared->pcl_peak_mib = meter.stopMib();
   prepared->pcl_seconds = pcl->cadStats().seconds;
   prepared->pcl_dense_points = pcl->cadStats().dense_points;
@@ -386,16 +399,8 @@ bool runDragon(const Options& options,
       std::fprintf(stderr, "pcl_compare: %s cannot be a CAD\n", pair.cad_view.c_str());
       return false;
     }
-    if (options.run_ours) {
-      prepared.ours_seconds = secondsSince(start);
-      prepared.ours_peak_mib = meter.stopMib();
-    }
-    prepared.vertices = model.mesh().vertices.size();
-    prepared.diagonal = model.bounds().diagonal();
-    std::unique_ptr<fb::PclRegistration> pcl;
-    if (options.run_pcl) {
-      pcl = preparePcl(model, pcl_config, &prepared);
-    }
+    const std::unique_ptr<fb::PclRegistration> pcl =
+        prepareMethods(model, options, pcl_config, secondsSince(start), meter.stopMib(), &prepared);
     parts->push_back(prepared);
     fi::SyntheticScan truth;
     truth.scan.points = pair.scan;
@@ -490,16 +495,8 @@ int main(int argc, char** argv) {
     }
     const fi::Model& model = *loaded.model;
     // The model is needed for the cases and the truth; its cost counts only when ours runs.
-    if (options.run_ours) {
-      prepared.ours_seconds = secondsSince(start);
-      prepared.ours_peak_mib = meter.stopMib();
-    }
-    prepared.vertices = model.mesh().vertices.size();
-    prepared.diagonal = model.bounds().diagonal();
-    std::unique_ptr<fb::PclRegistration> pcl;
-    if (options.run_pcl) {
-      pcl = preparePcl(model, pcl_config, &prepared);
-    }
+    const std::unique_ptr<fb::PclRegistration> pcl =
+        prepareMethods(model, options, pcl_config, secondsSince(start), meter.stopMib(), &prepared);
     std::fprintf(stderr,
                  "# %s: %zu vertices, L = %.4f m; ours load %.2f s, PCL prep %.2f s\n",
                  prepared.part.c_str(),
