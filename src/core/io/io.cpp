@@ -274,10 +274,6 @@ ScanLoadResult loadScanUnguarded(const std::string& path, double scale) {
   return result;
 }
 
-}  // namespace
-
-namespace {
-
 MeshLoadResult loadMeshGuarded(const std::string& path,
                                const std::string_view* bytes,
                                double scale) {
