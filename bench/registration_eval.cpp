@@ -208,6 +208,10 @@ int main(int argc, char** argv) {
               load_s);
   int ok = 0, ambiguous = 0, failed = 0, success = 0, wrong_ok = 0;
   double total_time = 0.0;
+  // Right poses' squared errors against the squared errors their covariance predicts.
+  double rotation_sq = 0.0, rotation_predicted_sq = 0.0;
+  double translation_sq = 0.0, translation_predicted_sq = 0.0;
+  int calibrated = 0;
   for (int c = 0; c < options.cases; ++c) {
     fi::SyntheticScanConfig config = options.scan;
     config.seed = options.first_seed + static_cast<std::uint64_t>(c);
@@ -268,6 +272,15 @@ int main(int argc, char** argv) {
     const double rotation = fi::bench::rotationErrorDeg(result.T_cad_scan, truth);
     const double translation = (result.T_cad_scan * centroid - truth * centroid).norm() / diagonal;
     const bool right = rotation < 2.0 && translation < 0.01;
+    const fi::bench::PredictedError predicted =
+        fi::bench::predictedError(result.pose_uncertainty, result.T_cad_scan, centroid);
+    if (right && result.pose_uncertainty.known) {
+      ++calibrated;
+      rotation_sq += rotation * rotation;
+      rotation_predicted_sq += predicted.rotation_deg * predicted.rotation_deg;
+      translation_sq += translation * translation;
+      translation_predicted_sq += std::pow(predicted.at_point / diagonal, 2);
+    }
     const bool is_ok = result.registration == fi::RegistrationStatus::kOk;
     ok += is_ok ? 1 : 0;
     ambiguous += result.registration == fi::RegistrationStatus::kAmbiguous ? 1 : 0;
@@ -282,7 +295,8 @@ int main(int argc, char** argv) {
       std::printf(
           "{\"seed\":%llu,\"status\":\"%s\",\"rotation_deg\":%.4f,\"translation_ratio\":%.6f,"
           "\"success\":%s,\"rmse_over_sigma\":%.3f,\"features\":%zu,\"candidates\":%zu,"
-          "\"correspondences\":%zu,\"seconds\":%.4f}\n",
+          "\"correspondences\":%zu,\"predicted_rotation_deg\":%.4f,"
+          "\"predicted_translation_ratio\":%.6f,\"seconds\":%.4f}\n",
           static_cast<unsigned long long>(config.seed),
           fi::toString(result.registration),
           rotation,
@@ -292,15 +306,19 @@ int main(int argc, char** argv) {
           result.counts.features,
           result.counts.candidates,
           result.counts.correspondences,
+          predicted.rotation_deg,
+          predicted.at_point / diagonal,
           seconds);
     } else {
       std::printf(
-          "seed %3llu %-9s rot %8.3f deg  t %7.4f %%L  rms/σ %5.2f  score %.3f  "
+          "seed %3llu %-9s rot %8.3f deg (±%.3f)  t %7.4f %%L (±%.4f)  rms/σ %5.2f  score %.3f  "
           "fit %.3f  surface %.3f  f/c/k %zu/%zu/%zu  %.2f s%s\n",
           static_cast<unsigned long long>(config.seed),
           fi::toString(result.registration),
           rotation,
+          predicted.rotation_deg,
           translation * 100.0,
+          predicted.at_point / diagonal * 100.0,
           rms_over_sigma,
           result.score,
           result.fitness,
@@ -321,6 +339,17 @@ int main(int argc, char** argv) {
         std::printf("\n");
       }
     }
+  }
+  if (calibrated > 0) {
+    // The pose covariance's calibration: measured RMS errors of the right poses beside the RMS
+    // their covariances predict (docs/registration.md, "Pose uncertainty").
+    std::printf(
+        "# right poses: rotation RMS %.4f deg (predicted %.4f), centroid RMS %.5f %%L "
+        "(predicted %.5f)\n",
+        std::sqrt(rotation_sq / calibrated),
+        std::sqrt(rotation_predicted_sq / calibrated),
+        100.0 * std::sqrt(translation_sq / calibrated),
+        100.0 * std::sqrt(translation_predicted_sq / calibrated));
   }
   std::printf(
       "# success %d/%d, ok %d, ambiguous %d, failed %d, wrong-but-ok %d, "

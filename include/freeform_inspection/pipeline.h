@@ -18,6 +18,7 @@
 #include "freeform_inspection/global_registration.h"
 #include "freeform_inspection/icp.h"
 #include "freeform_inspection/model.h"
+#include "freeform_inspection/pose_uncertainty.h"
 #include "freeform_inspection/scan_cleaning.h"
 #include "freeform_inspection/support_plane.h"
 #include "freeform_inspection/types.h"
@@ -104,6 +105,9 @@ struct InspectionResult {
   /// Share of the scan's surface (linked cells) within the inlier distance of the CAD at the
   /// pose: 1 for a right pose on a clean scan, whatever its outliers (surface_support.h).
   double surface_on_cad = std::numeric_limits<double>::quiet_NaN();
+  /// How far the scan's noise leaves the pose free (pose_uncertainty.h); known once the
+  /// deviation is measured (registration ok or ambiguous).
+  PoseUncertainty pose_uncertainty;
   DeviationStatistics deviation;      ///< empty unless the registration is ok or ambiguous
   std::vector<DefectRegion> defects;  ///< largest |peak| first
   DeviationMap deviation_map;         ///< per scan point, CAD frame (empty when failed)

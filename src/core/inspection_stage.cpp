@@ -52,6 +52,13 @@ void measurePart(const Model& model,
   SurfaceDistances distances =
       measureDeviation(model, map.points, config.deviation.max_distance_ratio * diagonal);
   map.deviation = std::move(distances.deviation);
+  result->pose_uncertainty = estimatePoseUncertainty(map.points,
+                                                     distances.normals,
+                                                     map.deviation,
+                                                     result->T_cad_scan,
+                                                     result->inlier_distance,
+                                                     result->noise_sigma,
+                                                     diagonal);
   map.shape_deviation =
       shapeDeviation(descriptors, model.descriptors(), result->T_cad_scan, distances.normals);
   result->deviation =

@@ -147,6 +147,15 @@ freeform_inspection::InspectionReport toReport(const fi::InspectionResult& resul
   report.transform.child_frame_id = part_frame;
   report.rmse = result.rmse;
   report.fitness = result.fitness;
+  const fi::PoseUncertainty& spread = result.pose_uncertainty;
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      report.pose_covariance[static_cast<std::size_t>(6 * r + c)] =
+          spread.known ? spread.covariance(r, c) : 0.0;
+    }
+  }
+  report.pose_rotation_std_deg = spread.rotation_deg;
+  report.pose_translation_std = spread.translation;
   report.counts.scan_points = static_cast<std::uint32_t>(result.counts.scan_points);
   report.counts.cropped = static_cast<std::uint32_t>(result.counts.cropped);
   report.counts.support_points = static_cast<std::uint32_t>(result.counts.support_points);

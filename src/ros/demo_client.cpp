@@ -72,7 +72,9 @@ void printReport(const InspectionReport& report) {
   const auto& d = report.deviation;
   std::cout << "verdict:       " << statusName(report.status) << " (" << report.message << ")\n"
             << "registration:  " << report.registration_status << ", rmse " << mm(report.rmse)
-            << ", fitness " << report.fitness << "\n";
+            << ", fitness " << report.fitness << "\n"
+            << "pose spread:   " << report.pose_rotation_std_deg << " deg, "
+            << mm(report.pose_translation_std) << " (1 sigma, from the noise)\n";
   if (report.counts.support_points > 0) {
     std::cout << "support:       " << report.counts.support_points
               << " points of the table under the part removed before the registration\n";

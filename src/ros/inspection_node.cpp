@@ -78,6 +78,7 @@ InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   }
   marker_pub_ = pnh_.advertise<visualization_msgs::Marker>("model_marker", 1, /*latch=*/true);
   result_pub_ = pnh_.advertise<InspectionReport>("result", 1, /*latch=*/true);
+  pose_pub_ = pnh_.advertise<geometry_msgs::PoseWithCovarianceStamped>("pose", 1, /*latch=*/true);
   deviation_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("deviation", 1);
   // Latched: a viewer started after the inspection still shows its result (rviz).
   deviation_viz_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("deviation_viz", 1, /*latch=*/true);
@@ -476,12 +477,15 @@ void InspectionNode::publish(const fi::InspectionResult& result,
   if (result.registration == fi::RegistrationStatus::kFailed) {
     return;  // no pose: nothing to place in the part frame
   }
-  if (config_.publish_tf && result.registration == fi::RegistrationStatus::kOk) {
-    if (config_.tf_static) {
-      tf_static_broadcaster_.sendTransform(report.transform);
-    } else {
-      tf_broadcaster_.sendTransform(report.transform);
+  if (result.registration == fi::RegistrationStatus::kOk) {
+    if (config_.publish_tf) {
+      if (config_.tf_static) {
+        tf_static_broadcaster_.sendTransform(report.transform);
+      } else {
+        tf_broadcaster_.sendTransform(report.transform);
+      }
     }
+    pose_pub_.publish(poseWithCovariance(report));
   }
   std_msgs::Header part_header = report.header;
   part_header.frame_id = config_.part_frame;

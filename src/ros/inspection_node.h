@@ -158,6 +158,7 @@ class InspectionNode {
   ros::Subscriber scan_mesh_sub_;
   ros::Publisher marker_pub_;
   ros::Publisher result_pub_;
+  ros::Publisher pose_pub_;
   ros::Publisher deviation_pub_;
   ros::Publisher deviation_viz_pub_;
   ros::Publisher defects_pub_;

@@ -122,6 +122,18 @@ visualization_msgs::MarkerArray defectMarkers(const fi::InspectionResult& result
   return markers;
 }
 
+geometry_msgs::PoseWithCovarianceStamped poseWithCovariance(
+    const freeform_inspection::InspectionReport& report) {
+  geometry_msgs::PoseWithCovarianceStamped pose;
+  pose.header = report.transform.header;
+  pose.pose.pose.position.x = report.transform.transform.translation.x;
+  pose.pose.pose.position.y = report.transform.transform.translation.y;
+  pose.pose.pose.position.z = report.transform.transform.translation.z;
+  pose.pose.pose.orientation = report.transform.transform.rotation;
+  pose.pose.covariance = report.pose_covariance;
+  return pose;
+}
+
 void fillDeviation(const fi::InspectionResult& result,
                    freeform_inspection::InspectionReport* report) {
   const fi::DeviationStatistics& s = result.deviation;

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <string>
 
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_msgs/Header.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -32,6 +33,11 @@ sensor_msgs::PointCloud2 deviationCloud(const fi::InspectionResult& result,
 /// deletes the previous inspection's markers.
 visualization_msgs::MarkerArray defectMarkers(const fi::InspectionResult& result,
                                               const std_msgs::Header& header);
+
+/// @brief The report's part pose with its covariance, as a localizer publishes one: header =
+/// the scan's frame and stamp, pose = `transform`, covariance = `pose_covariance`.
+geometry_msgs::PoseWithCovarianceStamped poseWithCovariance(
+    const freeform_inspection::InspectionReport& report);
 
 /// @brief Copies statistics, histogram and defect regions into the report.
 void fillDeviation(const fi::InspectionResult& result,

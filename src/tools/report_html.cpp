@@ -74,6 +74,17 @@ std::string transformText(const Eigen::Isometry3d& T_cad_scan) {
   return text;
 }
 
+// "±0.012° / ±0.0031 mm (1σ, noise only)": the pose's spread from its covariance.
+std::string poseSpreadText(const PoseUncertainty& u) {
+  if (!u.known) {
+    return "unknown";
+  }
+  char text[96];
+  std::snprintf(text, sizeof(text), "&plusmn;%.3g&deg; / &plusmn;", u.rotation_deg);
+  return text + millimetres(u.translation) + " (1&sigma; from the noise alone" +
+         (u.constrained ? ")" : "; some motion is not held by the scan)");
+}
+
 std::string registrationSection(const InspectionResult& r) {
   const double total = r.timings.empty() ? 0.0 : r.timings.back().seconds;
   return "<h2>Registration</h2>\n<table>\n" +
@@ -85,6 +96,7 @@ std::string registrationSection(const InspectionResult& r) {
          tableRow("Scan surface on the CAD", {percent(r.surface_on_cad)}) +
          tableRow("Residual noise (robust sigma)", {millimetres(r.noise_sigma)}) +
          tableRow("Inlier distance", {millimetres(r.inlier_distance)}) +
+         tableRow("Pose spread (turn / centroid)", {poseSpreadText(r.pose_uncertainty)}) +
          tableRow("Scan noise", {millimetres(r.scan_noise)}) +
          tableRow("Alternative poses", {std::to_string(r.alternatives.size())}) +
          tableRow(

@@ -84,6 +84,26 @@ nlohmann::ordered_json defectsJson(const std::vector<DefectRegion>& defects) {
   return list;
 }
 
+// The part's pose in the scan frame, as geometry_msgs/PoseWithCovariance orders it.
+nlohmann::ordered_json poseUncertaintyJson(const PoseUncertainty& u) {
+  if (!u.known) {
+    return nullptr;
+  }
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (int r = 0; r < 6; ++r) {
+    nlohmann::ordered_json row = nlohmann::ordered_json::array();
+    for (int c = 0; c < 6; ++c) {
+      row.push_back(u.covariance(r, c));
+    }
+    rows.push_back(row);
+  }
+  return {{"rotation_deg", numberOrNull(u.rotation_deg)},
+          {"translation", numberOrNull(u.translation)},
+          {"constrained", u.constrained},
+          {"points", u.points},
+          {"covariance", rows}};
+}
+
 nlohmann::ordered_json countsJson(const InspectionCounts& c) {
   return {{"scan_points", c.scan_points},
           {"non_finite", c.non_finite},
@@ -115,6 +135,7 @@ nlohmann::ordered_json toJson(const InspectionResult& result) {
   json["inlier_distance"] = numberOrNull(result.inlier_distance);
   json["scan_noise"] = numberOrNull(result.scan_noise);
   json["surface_on_cad"] = numberOrNull(result.surface_on_cad);
+  json["pose_uncertainty"] = poseUncertaintyJson(result.pose_uncertainty);
   json["verdict"] = toString(result.verdict);
   json["verdict_reason"] = result.verdict_reason;
   json["deviation"] = deviationJson(result.deviation);

@@ -8,6 +8,7 @@
 
 #include "rostest_helpers.h"
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -68,6 +69,7 @@ std::string value(const DiagnosticStatus& status, const std::string& key) {
 TEST(AutoInspect, APublishedScanIsInspectedReportedAndDiagnosed) {
   Latest<InspectionReport> result(nodeName() + "/result");
   Latest<DiagnosticArray> diagnostics("/diagnostics");
+  Latest<geometry_msgs::PoseWithCovarianceStamped> pose(nodeName() + "/pose");
   ros::NodeHandle nh;
   // Latched: the node receives the scan whenever its subscription connects.
   ros::Publisher scan = nh.advertise<sensor_msgs::PointCloud2>(param("scan_topic"), 1, true);
@@ -84,6 +86,23 @@ TEST(AutoInspect, APublishedScanIsInspectedReportedAndDiagnosed) {
   const auto on_tf = partOnTf(ros::Time(1234.5));
   ASSERT_TRUE(on_tf);
   expectSamplePose(*on_tf, "tf scanner → part");
+
+  // The same pose with its covariance on ~pose, for consumers that weigh it (a localizer).
+  ASSERT_TRUE(waitUntil([&] { return pose.get() != nullptr; }, kWait))
+      << "no pose on " << nodeName() << "/pose";
+  const auto with_covariance = pose.get();
+  EXPECT_EQ(with_covariance->header.frame_id, "scanner");
+  EXPECT_EQ(with_covariance->header.stamp, ros::Time(1234.5));
+  Eigen::Isometry3d published = Eigen::Isometry3d::Identity();
+  tf2::fromMsg(with_covariance->pose.pose, published);
+  expectSamplePose(published, "~pose");
+  EXPECT_EQ(with_covariance->pose.covariance, report->pose_covariance);
+  // Variances of a 30k-point scan at σ ≈ 20 µm: positive, and far below the tolerance's square.
+  for (int i = 0; i < 6; ++i) {
+    const double variance = with_covariance->pose.covariance[static_cast<std::size_t>(7 * i)];
+    EXPECT_GT(variance, 0.0) << "variance " << i;
+    EXPECT_LT(variance, 1e-8) << "variance " << i;  // (0.1 mm)² or (0.0057°)²
+  }
 
   // Diagnostics update once a second; wait for the entry that has seen the inspection.
   const auto inspected = [&] {

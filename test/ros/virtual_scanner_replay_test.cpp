@@ -139,11 +139,26 @@ TEST(ScanReplay, EveryScanRegistersAndTheDentIsFound) {
     EXPECT_EQ(report->registration_status, "ok") << what << ": " << report->message;
     EXPECT_LT(angle, kAngleToleranceDeg) << what;
     EXPECT_LT(offset, kTranslationShareOfDiagonal * diagonal) << what;
+    // The pose's covariance arrives filled: symmetric, positive variances, the stated spreads.
+    for (int r = 0; r < 6; ++r) {
+      EXPECT_GT(report->pose_covariance[static_cast<std::size_t>(7 * r)], 0.0) << what;
+      for (int c = 0; c < 6; ++c) {
+        EXPECT_EQ(report->pose_covariance[static_cast<std::size_t>(6 * r + c)],
+                  report->pose_covariance[static_cast<std::size_t>(6 * c + r)])
+            << what;
+      }
+    }
+    EXPECT_GT(report->pose_rotation_std_deg, 0.0) << what;
+    EXPECT_LT(report->pose_rotation_std_deg, kAngleToleranceDeg) << what;
+    EXPECT_GT(report->pose_translation_std, 0.0) << what;
+    EXPECT_LT(report->pose_translation_std, kTranslationShareOfDiagonal * diagonal) << what;
     std::cout << what << ": " << report->counts.scan_points << " points, registration "
               << report->registration_status << ", rotation error " << angle
               << " deg, translation error " << offset * 1e3 << " mm (" << 100.0 * offset / diagonal
-              << " % of L), rmse " << report->rmse * 1e3 << " mm, status " << int{report->status}
-              << ", " << report->defects.size() << " defect(s)\n";
+              << " % of L), rmse " << report->rmse * 1e3 << " mm, pose spread "
+              << report->pose_rotation_std_deg << " deg / " << report->pose_translation_std * 1e3
+              << " mm, status " << int{report->status} << ", " << report->defects.size()
+              << " defect(s)\n";
     if (i != dent_scan) {
       EXPECT_EQ(report->status, InspectionReport::PASS) << what << ": " << report->message;
       continue;
