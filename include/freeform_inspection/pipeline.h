@@ -101,6 +101,10 @@ struct InspectionResult {
   double inlier_distance = std::numeric_limits<double>::quiet_NaN();  ///< [m] 3σ, bounded
   double noise_sigma = std::numeric_limits<double>::quiet_NaN();  ///< [m] robust σ of residuals
   double score = 0.0;  ///< verification score of the pose: share of the scan it explains
+  /// Score of the best distinct rival pose over the pose's own (0..1, at a truncation of 3σ of
+  /// the fit): near 1 for a view a symmetric part looks the same in; 0 when no distinct pose
+  /// came within 80 % of it in the quick ranking, or before a pose was chosen.
+  double ambiguity = 0.0;
   double scan_noise = std::numeric_limits<double>::quiet_NaN();  ///< [m] the scan's own noise
   /// Share of the scan's surface (linked cells) within the inlier distance of the CAD at the
   /// pose: 1 for a right pose on a clean scan, whatever its outliers (surface_support.h).

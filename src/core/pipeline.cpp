@@ -712,6 +712,15 @@ void registerScan(const Model& model,
       result->alternatives.push_back(rival.T_cad_scan);
     }
   }
+  // How near the best distinct rival comes, on the scores matched to the measured residual.
+  double rival_score = 0.0;
+  for (std::size_t c = 0; c < contenders.size(); ++c) {
+    if (c != best && separatePoses(result->T_cad_scan, contenders[c].T_cad_scan, reference, cell)) {
+      rival_score = std::max(rival_score, fine_scores[c]);
+    }
+  }
+  result->ambiguity =
+      fine_scores[best] > 0.0 ? std::min(1.0, rival_score / fine_scores[best]) : 0.0;
   watch.lap("verification");
   if (!result->alternatives.empty()) {
     result->registration = RegistrationStatus::kAmbiguous;

@@ -147,6 +147,7 @@ freeform_inspection::InspectionReport toReport(const fi::InspectionResult& resul
   report.transform.child_frame_id = part_frame;
   report.rmse = result.rmse;
   report.fitness = result.fitness;
+  report.ambiguity = result.ambiguity;
   const fi::PoseUncertainty& spread = result.pose_uncertainty;
   for (int r = 0; r < 6; ++r) {
     for (int c = 0; c < 6; ++c) {

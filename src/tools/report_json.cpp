@@ -131,6 +131,7 @@ nlohmann::ordered_json toJson(const InspectionResult& result) {
   json["rmse"] = numberOrNull(result.rmse);
   json["fitness"] = result.fitness;
   json["score"] = result.score;
+  json["ambiguity"] = result.ambiguity;
   json["noise_sigma"] = numberOrNull(result.noise_sigma);
   json["inlier_distance"] = numberOrNull(result.inlier_distance);
   json["scan_noise"] = numberOrNull(result.scan_noise);

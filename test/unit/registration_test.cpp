@@ -519,7 +519,14 @@ TEST(Registration, SymmetricPartIsNeverAConfidentWrongPose) {
       ++ambiguous;
       EXPECT_FALSE(result.alternatives.empty());
       EXPECT_EQ(result.status.code, StatusCode::kAmbiguous);
+      // Its half turns explain the scan as well as the pose does, but for the noise.
+      EXPECT_GT(result.ambiguity, 0.95) << "seed " << seed;
+      EXPECT_LE(result.ambiguity, 1.0) << "seed " << seed;
     }
+    std::printf("box seed %llu: %s, ambiguity %.4f\n",
+                static_cast<unsigned long long>(seed),
+                toString(result.registration),
+                result.ambiguity);
   }
   EXPECT_GE(ambiguous, 1) << "a box must be reported ambiguous at least sometimes";
 }
