@@ -125,9 +125,13 @@ std::vector<double> verificationTerms(const Eigen::Isometry3d& T_cad_scan,
 bool scanPrefers(const std::vector<double>& a, const std::vector<double>& b);
 
 /// @brief The sign test of scanPrefers() alone: the points only `a` explains outnumber those
-/// only `b` explains by `sigmas` standard deviations of a coin toss between the two, without
-/// its share and ratio. Evidence that leans `a`'s way, too weak to decide on its own.
-bool scanLeans(const std::vector<double>& a, const std::vector<double>& b, double sigmas);
+/// only `b` explains by `sigmas` standard deviations of a coin toss between the two, and are at
+/// least `min_share` of all points, without scanPrefers' ratio. Evidence that leans `a`'s way,
+/// too weak to decide on its own.
+bool scanLeans(const std::vector<double>& a,
+               const std::vector<double>& b,
+               double sigmas,
+               double min_share = 0.0);
 
 /// @brief True when two poses differ by more than `angle_deg` or move `reference` (scan frame)
 /// by more than `distance`.

@@ -424,9 +424,13 @@ bool scanPrefers(const std::vector<double>& a, const std::vector<double>& b) {
          leans(only_a, only_b, kSigmas);
 }
 
-bool scanLeans(const std::vector<double>& a, const std::vector<double>& b, double sigmas) {
+bool scanLeans(const std::vector<double>& a,
+               const std::vector<double>& b,
+               double sigmas,
+               double min_share) {
   const auto [only_a, only_b] = exclusivelyExplained(a, b);
-  return leans(only_a, only_b, sigmas);
+  const auto count = static_cast<double>(std::min(a.size(), b.size()));
+  return only_a >= min_share * count && leans(only_a, only_b, sigmas);
 }
 
 bool distinctPoses(const Eigen::Isometry3d& a,

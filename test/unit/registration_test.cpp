@@ -645,6 +645,12 @@ TEST(Registration, ScanLeansIsTheSignTestAlone) {
   EXPECT_TRUE(scanLeans(differing(10, 2).first, differing(10, 2).second, 2.0));
   // Nothing either way leans nowhere.
   EXPECT_FALSE(scanLeans(differing(0, 0).first, differing(0, 0).second, 0.0));
+  // With a share: 14 of the 1,500 points against none is 3.7 σ but under 1 % (stray cells of a
+  // bar's view turned end for end); 15 is 1 %.
+  EXPECT_TRUE(scanLeans(differing(14, 0).first, differing(14, 0).second, 2.0));
+  EXPECT_FALSE(scanLeans(differing(14, 0).first, differing(14, 0).second, 2.0, 0.01));
+  EXPECT_TRUE(scanLeans(differing(15, 0).first, differing(15, 0).second, 2.0, 0.01));
+  EXPECT_FALSE(scanLeans(differing(10, 2).first, differing(10, 2).second, 2.0, 0.01));
 }
 
 // The fitted verification set: the cells makeVerificationSet takes, each at the mean of its
