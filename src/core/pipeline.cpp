@@ -657,10 +657,10 @@ void registerScan(const Model& model,
   // scanPrefers asks. The same cells at their points' mean on the fitted surfaces lie 3.5 mm off
   // at the median, and within 3 of that spread at the best pose the twin is told apart by 4 to 1.
   // That sharper test also counts what refinement left, so it may dismiss a rival only where the
-  // centroids lean the best's way too (scanLeans, two standard deviations and 1 % of the cells): a flange seen from
-  // one side, turned 7.6° about its axis, beat each of its other turns on the fitted cells, and
-  // the centroids side with none of them. A wrong best pose spreads the fitted cells wider,
-  // which makes the test more lenient, not less.
+  // centroids lean the best's way too (scanLeans, two standard deviations and 1 % of the cells): a
+  // flange seen from one side, turned 7.6° about its axis, beat each of its other turns on the
+  // fitted cells, and the centroids side with none of them. A wrong best pose spreads the fitted
+  // cells wider, which makes the test more lenient, not less.
   VerificationSet fitted;  // only when a rival needs it
   double fitted_band = 0.0;
   std::vector<double> best_terms;
