@@ -30,6 +30,7 @@
 #include "freeform_inspection/config_yaml.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
+#include "freeform_inspection/pose_uncertainty.h"
 #include "freeform_inspection/synthetic_scan.h"
 #include "freeform_inspection/virtual_scanner.h"
 
@@ -272,14 +273,15 @@ int main(int argc, char** argv) {
     const double rotation = fi::bench::rotationErrorDeg(result.T_cad_scan, truth);
     const double translation = (result.T_cad_scan * centroid - truth * centroid).norm() / diagonal;
     const bool right = rotation < 2.0 && translation < 0.01;
-    const fi::bench::PredictedError predicted =
-        fi::bench::predictedError(result.pose_uncertainty, result.T_cad_scan, centroid);
+    const fi::PredictedSpread spread =
+        fi::predictedSpread(result.pose_uncertainty, result.T_cad_scan, centroid);
+    const double predicted_rotation_deg = spread.rotation * 180.0 / 3.14159265358979323846;
     if (right && result.pose_uncertainty.known) {
       ++calibrated;
       rotation_sq += rotation * rotation;
-      rotation_predicted_sq += predicted.rotation_deg * predicted.rotation_deg;
+      rotation_predicted_sq += predicted_rotation_deg * predicted_rotation_deg;
       translation_sq += translation * translation;
-      translation_predicted_sq += std::pow(predicted.at_point / diagonal, 2);
+      translation_predicted_sq += std::pow(spread.at_point / diagonal, 2);
     }
     const bool is_ok = result.registration == fi::RegistrationStatus::kOk;
     ok += is_ok ? 1 : 0;
@@ -306,8 +308,8 @@ int main(int argc, char** argv) {
           result.counts.features,
           result.counts.candidates,
           result.counts.correspondences,
-          predicted.rotation_deg,
-          predicted.at_point / diagonal,
+          predicted_rotation_deg,
+          spread.at_point / diagonal,
           seconds);
     } else {
       std::printf(
@@ -316,9 +318,9 @@ int main(int argc, char** argv) {
           static_cast<unsigned long long>(config.seed),
           fi::toString(result.registration),
           rotation,
-          predicted.rotation_deg,
+          predicted_rotation_deg,
           translation * 100.0,
-          predicted.at_point / diagonal * 100.0,
+          spread.at_point / diagonal * 100.0,
           rms_over_sigma,
           result.score,
           result.fitness,

@@ -52,4 +52,18 @@ PoseUncertainty estimatePoseUncertainty(const Points& points_cad,
                                         double sigma,
                                         double cad_diagonal);
 
+/// RMS errors a pose covariance predicts.
+struct PredictedSpread {
+  double rotation = 0.0;  ///< [rad] RMS of the rotation angle
+  double at_point = 0.0;  ///< [m] RMS of the error at the point asked for
+};
+
+/// @brief What `uncertainty` predicts for the pose `T_cad_scan`, read from the covariance of the
+/// part's pose in the scan frame as a ROS consumer reads it: a scan point s moves by
+/// δp + δθ × (s − p), p the part origin in the scan frame.
+/// @param point_scan [m] a point in the scan frame (e.g. the scan's centroid)
+PredictedSpread predictedSpread(const PoseUncertainty& uncertainty,
+                                const Eigen::Isometry3d& T_cad_scan,
+                                const Eigen::Vector3d& point_scan);
+
 }  // namespace freeform_inspection

@@ -111,4 +111,14 @@ PoseUncertainty estimatePoseUncertainty(const Points& points_cad,
   return out;
 }
 
+PredictedSpread predictedSpread(const PoseUncertainty& uncertainty,
+                                const Eigen::Isometry3d& T_cad_scan,
+                                const Eigen::Vector3d& point_scan) {
+  const Matrix6& c = uncertainty.covariance;
+  Eigen::Matrix<double, 3, 6> motion;
+  motion << Eigen::Matrix3d::Identity(), -skew(point_scan - T_cad_scan.inverse().translation());
+  return {std::sqrt(std::max(0.0, c.bottomRightCorner<3, 3>().trace())),
+          std::sqrt(std::max(0.0, (motion * c * motion.transpose()).trace()))};
+}
+
 }  // namespace freeform_inspection

@@ -133,6 +133,12 @@ TEST(PoseUncertainty, ABoxOffTheOriginInATurnedScanFrame) {
   // Symmetric, and the same spread whatever the frame for the centroid's shift and the turn.
   EXPECT_LT((c - c.transpose()).cwiseAbs().maxCoeff(), 1e-15);
   EXPECT_NEAR(u.translation, std::sqrt(var_shift), 1e-6 * std::sqrt(var_shift));
+  // Read back at the box's centre (scan frame) the turns' lever is gone: three shifts alone.
+  const Eigen::Vector3d centre_scan = T_cad_scan.inverse() * Eigen::Vector3d(d, 0.0, 0.0);
+  const PredictedSpread at_centre = predictedSpread(u, T_cad_scan, centre_scan);
+  EXPECT_NEAR(at_centre.at_point * at_centre.at_point, 3.0 * var_shift, 1e-6 * var_shift);
+  const double turn_trace = c(3, 3) + c(4, 4) + c(5, 5);
+  EXPECT_NEAR(at_centre.rotation * at_centre.rotation, turn_trace, 1e-12 * turn_trace);
 }
 
 TEST(PoseUncertainty, LeavesOutPointsBeyondTheInlierDistance) {
@@ -222,18 +228,9 @@ TEST(PoseUncertainty, PredictsTheSpreadOfIcpPosesOnABox) {
                                  generated.T_cad_scan.linear());
     rotation_sq += turn.angle() * turn.angle();
     shift_sq += (icp.T_cad_scan * centroid - generated.T_cad_scan * centroid).squaredNorm();
-    const auto& c = u.covariance;
-    predicted_rotation_sq += c.bottomRightCorner<3, 3>().trace();
-    const Eigen::Vector3d arm = centroid - icp.T_cad_scan.inverse().translation();
-    Eigen::Matrix<double, 3, 6> map;
-    map << Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Zero();
-    map(0, 4) = arm.z();
-    map(0, 5) = -arm.y();
-    map(1, 3) = -arm.z();
-    map(1, 5) = arm.x();
-    map(2, 3) = arm.y();
-    map(2, 4) = -arm.x();
-    predicted_shift_sq += (map * c * map.transpose()).trace();
+    const PredictedSpread predicted = predictedSpread(u, icp.T_cad_scan, centroid);
+    predicted_rotation_sq += predicted.rotation * predicted.rotation;
+    predicted_shift_sq += predicted.at_point * predicted.at_point;
   }
   const double rotation_ratio = std::sqrt(rotation_sq / predicted_rotation_sq);
   const double shift_ratio = std::sqrt(shift_sq / predicted_shift_sq);
