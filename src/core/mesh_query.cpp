@@ -179,6 +179,13 @@ struct Data {
   std::vector<std::array<int, 3>> face_edges;  ///< edge ids of edges v0v1, v1v2, v2v0
   Points edge_normals;                         ///< sum of the adjacent unit face normals
   Points vertex_normals;                       ///< angle-weighted sum of incident face normals
+  // Each face's corners side by side with its plane, so a query reads one face from one place
+  // instead of three vertices from wherever the mesh keeps them.
+  struct FaceGeometry {
+    std::array<Eigen::Vector3d, 3> corners;
+    Eigen::Vector3d plane_normal;  ///< unit; zero for a sliver, whose plane bounds nothing
+  };
+  std::vector<FaceGeometry> face_geometry;
   // Embree works in float; coordinates are shifted to the box centre to keep float precision
   // relative to the part, not to its distance from the origin.
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -205,6 +212,7 @@ struct Data {
   }
 
   Status validate() const;
+  void computeFaceGeometry();
   void computePseudoNormals();
   Status buildScene();
   Eigen::Vector3d pseudoNormal(int face, const TrianglePoint& closest) const;
@@ -250,16 +258,33 @@ bool facesTheWay(const PointQueryState& state, int face) {
   return (state.oriented ? agreement : std::abs(agreement)) >= state.min_cos;
 }
 
+// Whether the face's plane alone is farther than the best so far (or the distance bound): no
+// point of the face can then win. The margin covers the rounding of the plane's normal and of
+// both distances (relative 1e-9 for faces that are not slivers), so only faces that could not
+// win are skipped and the answer stays the exact search's.
+bool planeBeyondReach(const PointQueryState& state, const Data::FaceGeometry& face) {
+  const Eigen::Vector3d offset = state.query - face.corners[0];
+  const double margin = 1e-7 * offset.cwiseAbs().sum();
+  const double lower = std::abs(face.plane_normal.dot(offset)) - margin;
+  if (!(lower > 0.0)) {
+    return false;
+  }
+  return lower > state.max_distance ||
+         (state.face >= 0 && lower * lower > state.best.squared_distance);
+}
+
 // Offers one face; true when it became the best so far. Equal distances go to the lower face
 // index, so the answer does not depend on the traversal order.
 bool considerFace(PointQueryState& state, int face) {
   if (!facesTheWay(state, face)) {
     return false;
   }
-  const TrianglePoint candidate = closestOnTriangle(state.query,
-                                                    state.impl->vertex(face, 0),
-                                                    state.impl->vertex(face, 1),
-                                                    state.impl->vertex(face, 2));
+  const Data::FaceGeometry& geometry = state.impl->face_geometry[static_cast<std::size_t>(face)];
+  if (planeBeyondReach(state, geometry)) {
+    return false;
+  }
+  const TrianglePoint candidate =
+      closestOnTriangle(state.query, geometry.corners[0], geometry.corners[1], geometry.corners[2]);
   if (!std::isfinite(candidate.squared_distance) ||
       !(std::sqrt(candidate.squared_distance) <= state.max_distance)) {
     return false;
@@ -332,6 +357,23 @@ Status mesh_query_internal::Data::validate() const {
         "mesh query: all " + std::to_string(mesh.faces.size()) + " faces have zero area");
   }
   return Status::success();
+}
+
+void mesh_query_internal::Data::computeFaceGeometry() {
+  face_geometry.resize(mesh.faces.size());
+  for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
+    FaceGeometry& face = face_geometry[i];
+    for (int c = 0; c < 3; ++c) {
+      face.corners[static_cast<std::size_t>(c)] = vertex(static_cast<int>(i), c);
+    }
+    // The sliver test of closestOnTriangle(): where it treats a face as its edges, the computed
+    // normal may point anywhere.
+    const Eigen::Vector3d ab = face.corners[1] - face.corners[0];
+    const Eigen::Vector3d ac = face.corners[2] - face.corners[0];
+    const bool sliver =
+        !(ab.cross(ac).squaredNorm() > kSliverSin2 * ab.squaredNorm() * ac.squaredNorm());
+    face.plane_normal = sliver ? Eigen::Vector3d::Zero() : mesh.face_normals[i];
+  }
 }
 
 void mesh_query_internal::Data::computePseudoNormals() {
@@ -446,6 +488,7 @@ MeshQuery::MeshQuery(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>())
   const BoundingBox box = computeBoundingBox(impl_->mesh.vertices);
   impl_->centre = 0.5 * (box.min + box.max);
   impl_->half_extent = 0.5 * box.extent().maxCoeff();
+  impl_->computeFaceGeometry();
   impl_->computePseudoNormals();
   impl_->status = impl_->buildScene();
 }

@@ -443,6 +443,70 @@ TEST(MeshQuery, ClosestMatchesBruteForceAndWindingNumber) {
   EXPECT_EQ(signs_checked, 1000);
 }
 
+TEST(MeshQuery, FacesSkippedByTheirPlaneNeverHoldTheAnswer) {
+  // A face whose plane lies farther than the best so far is skipped unread. Stacks of parallel
+  // sheets make most faces skippable; slivers (whose computed plane may point anywhere) and a
+  // part 1 km from the origin (where the plane's offset cancels) are where the bound could lie.
+  TriangleMesh mesh;
+  std::mt19937 rng(kSeed + 7);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  const Eigen::Vector3d far(1000.0, -700.0, 300.0);
+  for (int sheet = 0; sheet < 5; ++sheet) {
+    for (int i = 0; i < 6; ++i) {
+      for (int j = 0; j < 6; ++j) {
+        const auto first = static_cast<int>(mesh.vertices.size());
+        const double z = 0.1 * sheet;
+        for (const auto& [u, v] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}}) {
+          mesh.vertices.push_back(far + Eigen::Vector3d(0.1 * (i + u) + jitter(rng),
+                                                        0.1 * (j + v) + jitter(rng),
+                                                        z + jitter(rng)));
+        }
+        mesh.faces.push_back({first, first + 1, first + 2});
+      }
+    }
+  }
+  for (int k = 0; k < 20; ++k) {  // slivers: a long edge and a corner 1e-9 off it
+    const auto first = static_cast<int>(mesh.vertices.size());
+    const Eigen::Vector3d a = far + Eigen::Vector3d(jitter(rng), jitter(rng), 0.25 + jitter(rng));
+    const Eigen::Vector3d b = a + Eigen::Vector3d(0.5, 0.3 + jitter(rng), 0.01);
+    mesh.vertices.push_back(a);
+    mesh.vertices.push_back(b);
+    mesh.vertices.push_back(0.5 * (a + b) + Eigen::Vector3d(0.0, 0.0, 1e-9));
+    mesh.faces.push_back({first, first + 1, first + 2});
+  }
+  const MeshQuery query(mesh);
+  ASSERT_TRUE(query.status().ok()) << query.status().message;
+  std::uniform_real_distribution<double> around(-0.1, 0.7);
+  int unique_minima = 0;
+  for (int n = 0; n < 2000; ++n) {
+    const Eigen::Vector3d q = far + Eigen::Vector3d(around(rng), around(rng), around(rng) - 0.1);
+    std::vector<double> distances;
+    for (const auto& f : mesh.faces) {
+      distances.push_back(triangleDistance(q,
+                                           mesh.vertices[static_cast<std::size_t>(f[0])],
+                                           mesh.vertices[static_cast<std::size_t>(f[1])],
+                                           mesh.vertices[static_cast<std::size_t>(f[2])]));
+    }
+    const auto nearest = std::min_element(distances.begin(), distances.end());
+    const auto face = static_cast<int>(nearest - distances.begin());
+    for (const double max_distance : {kInf, 0.08}) {
+      const ClosestPoint found = query.closest(q, max_distance);
+      ASSERT_EQ(found.found, *nearest <= max_distance) << n;
+      if (!found.found) {
+        continue;
+      }
+      EXPECT_NEAR(found.distance, *nearest, 1e-12) << n << " " << q.transpose();
+      std::vector<double> others = distances;
+      others.erase(others.begin() + face);
+      if (*std::min_element(others.begin(), others.end()) > *nearest + 1e-9) {
+        EXPECT_EQ(found.face, face) << n;
+        unique_minima += max_distance == kInf ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(unique_minima, 1500);
+}
+
 TEST(MeshQuery, DegenerateTrianglesGiveFiniteAnswers) {
   TriangleMesh mesh = unitTriangle();
   mesh.vertices.push_back({2.0, 0.0, 0.0});
