@@ -93,6 +93,11 @@ constexpr double kProbeBelowSurface = 0.99;
 // camera views at 0.5 % noise put 0.91-1.0 there, so most scans skip those refinements (92
 // turns, up to 32 placed, 24 probes); a turn only wins where the scan sides with it.
 constexpr double kRetryBelowSurface = 0.95;
+// From there up to kProbeBelowSurface, the half turns about the CAD's wall directions alone
+// (9 of normalFrameTurns): a bent sheet's view with its legs swapped explains 98 % of itself,
+// and the probes do not turn it (docs/registration.md, "Half turns about the walls up to 99 %").
+// Every turn there made camera views, whose right poses often put 0.95-0.99 on the CAD,
+// 1.4-2.8x slower; the half turns cost them 4 %.
 // The probes along the fit's weakest motions: this many motions, each taken these many cells
 // either way (a slid prismatic view is found from within a cell or so of where it belongs).
 constexpr int kProbedMotions = 2;
@@ -500,10 +505,10 @@ void registerScan(const Model& model,
   // the probes along its weakest motions, the turns that the features' translation votes place
   // (votedTurnStarts: a turn about the centroid is many cells off where a part's mass is off its
   // near-symmetry's axis), below kRetryBelowSurface every turn as it is, then the probes about
-  // the best few poses so found (probesAroundRivals). A retried pose the scan clearly sides with
-  // (scanPrefers), still after it is refined as fully as the pose, replaces it; one the scan cannot
-  // tell from it becomes a contender, so that the verification below says ambiguous instead of
-  // picking one.
+  // the best few poses so found (probesAroundRivals); above it the half turns about the CAD's
+  // walls. A retried pose the scan clearly sides with (scanPrefers), still after it is refined as
+  // fully as the pose, replaces it; one the scan cannot tell from it becomes a contender, so that
+  // the verification below says ambiguous instead of picking one.
   if (icp.usable() && surface_share < kProbeBelowSurface) {
     std::vector<Eigen::Isometry3d> starts =
         probeStarts(model, set, icp.T_cad_scan, coarse_truncation);
@@ -516,6 +521,17 @@ void registerScan(const Model& model,
       starts.insert(starts.end(), voted.begin(), voted.end());
     }
     std::vector<RefinedPose> retried = refineAll(model, starts, set, config, turn);
+    if (!turn) {
+      std::vector<Eigen::Isometry3d> wall_turns;
+      for (const Eigen::Isometry3d& wall_turn : normalFrameTurns(cad.graph)) {
+        if (Eigen::AngleAxisd(wall_turn.linear()).angle() > 0.9 * kPi) {  // the 9 half turns
+          wall_turns.push_back(wall_turn * icp.T_cad_scan);
+        }
+      }
+      // Turned starts pair with faces turned the points' way, as the turns below 0.95 do.
+      const std::vector<RefinedPose> turned = refineAll(model, wall_turns, set, config, true);
+      retried.insert(retried.end(), turned.begin(), turned.end());
+    }
     if (turn) {
       const std::vector<RefinedPose> probed = refineAll(
           model,
