@@ -63,6 +63,11 @@ TrianglePoint closestOnSegment(const Eigen::Vector3d& p,
 // denominator |ab × ac|² is then dominated by cancellation (and is zero for degenerate faces).
 constexpr double kSliverSin2 = 1e-14;
 
+// Whether the face with edges ab and ac from its first corner is that thin.
+bool isSliver(const Eigen::Vector3d& ab, const Eigen::Vector3d& ac) {
+  return !(ab.cross(ac).squaredNorm() > kSliverSin2 * ab.squaredNorm() * ac.squaredNorm());
+}
+
 /// Closest point on triangle (a, b, c) to p, by the Voronoi region of p (Ericson, Real-Time
 /// Collision Detection, 5.1.5), in double.
 TrianglePoint closestOnTriangle(const Eigen::Vector3d& p,
@@ -71,8 +76,7 @@ TrianglePoint closestOnTriangle(const Eigen::Vector3d& p,
                                 const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a;
   const Eigen::Vector3d ac = c - a;
-  const double cross2 = ab.cross(ac).squaredNorm();
-  if (!(cross2 > kSliverSin2 * ab.squaredNorm() * ac.squaredNorm())) {
+  if (isSliver(ab, ac)) {
     TrianglePoint best = closestOnSegment(p, a, b, 0, 1, 0);
     for (const TrianglePoint& other :
          {closestOnSegment(p, b, c, 1, 2, 1), closestOnSegment(p, c, a, 2, 0, 2)}) {
@@ -366,12 +370,10 @@ void mesh_query_internal::Data::computeFaceGeometry() {
     for (int c = 0; c < 3; ++c) {
       face.corners[static_cast<std::size_t>(c)] = vertex(static_cast<int>(i), c);
     }
-    // The sliver test of closestOnTriangle(): where it treats a face as its edges, the computed
-    // normal may point anywhere.
-    const Eigen::Vector3d ab = face.corners[1] - face.corners[0];
-    const Eigen::Vector3d ac = face.corners[2] - face.corners[0];
+    // Where closestOnTriangle() treats a face as its edges, the computed normal may point
+    // anywhere.
     const bool sliver =
-        !(ab.cross(ac).squaredNorm() > kSliverSin2 * ab.squaredNorm() * ac.squaredNorm());
+        isSliver(face.corners[1] - face.corners[0], face.corners[2] - face.corners[0]);
     face.plane_normal = sliver ? Eigen::Vector3d::Zero() : mesh.face_normals[i];
   }
 }

@@ -521,7 +521,15 @@ void registerScan(const Model& model,
       starts.insert(starts.end(), voted.begin(), voted.end());
     }
     std::vector<RefinedPose> retried = refineAll(model, starts, set, config, turn);
-    if (!turn) {
+    if (turn) {
+      const std::vector<RefinedPose> probed = refineAll(
+          model,
+          probesAroundRivals(model, set, retried, icp.T_cad_scan, reference, coarse_truncation),
+          set,
+          config,
+          true);
+      retried.insert(retried.end(), probed.begin(), probed.end());
+    } else {
       std::vector<Eigen::Isometry3d> wall_turns;
       for (const Eigen::Isometry3d& wall_turn : normalFrameTurns(cad.graph)) {
         if (Eigen::AngleAxisd(wall_turn.linear()).angle() > 0.9 * kPi) {  // the 9 half turns
@@ -531,15 +539,6 @@ void registerScan(const Model& model,
       // Turned starts pair with faces turned the points' way, as the turns below 0.95 do.
       const std::vector<RefinedPose> turned = refineAll(model, wall_turns, set, config, true);
       retried.insert(retried.end(), turned.begin(), turned.end());
-    }
-    if (turn) {
-      const std::vector<RefinedPose> probed = refineAll(
-          model,
-          probesAroundRivals(model, set, retried, icp.T_cad_scan, reference, coarse_truncation),
-          set,
-          config,
-          true);
-      retried.insert(retried.end(), probed.begin(), probed.end());
     }
     const std::vector<double> current_terms = termsAt(icp.T_cad_scan);
     const double current_score = fineScore(icp.T_cad_scan);
