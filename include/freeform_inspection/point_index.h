@@ -38,6 +38,14 @@ class PointIndex {
   /// All points within `radius` [m], nearest first (ties by index).
   std::vector<Neighbour> within(const Eigen::Vector3d& query, double radius) const;
 
+  /// About `count` of the points within `radius`, spread from the nearest to the farthest:
+  /// every s-th of within(query, radius), s = max(1, n / count) for its n points (so up to
+  /// 2·count − 1 of them), in that order. A sample of a wide ball without a Neighbour for each
+  /// of its points.
+  std::vector<Neighbour> spreadWithin(const Eigen::Vector3d& query,
+                                      double radius,
+                                      std::size_t count) const;
+
   /// How many points within(query, radius) would return, without gathering or sorting them.
   std::size_t countWithin(const Eigen::Vector3d& query, double radius) const;
 

@@ -69,14 +69,14 @@ bool isSliver(const Eigen::Vector3d& ab, const Eigen::Vector3d& ac) {
 }
 
 /// Closest point on triangle (a, b, c) to p, by the Voronoi region of p (Ericson, Real-Time
-/// Collision Detection, 5.1.5), in double.
+/// Collision Detection, 5.1.5), in double. `sliver`: isSliver(b − a, c − a), which the face
+/// table keeps so that no query computes it again.
 TrianglePoint closestOnTriangle(const Eigen::Vector3d& p,
                                 const Eigen::Vector3d& a,
                                 const Eigen::Vector3d& b,
-                                const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a;
-  const Eigen::Vector3d ac = c - a;
-  if (isSliver(ab, ac)) {
+                                const Eigen::Vector3d& c,
+                                bool sliver) {
+  if (sliver) {
     TrianglePoint best = closestOnSegment(p, a, b, 0, 1, 0);
     for (const TrianglePoint& other :
          {closestOnSegment(p, b, c, 1, 2, 1), closestOnSegment(p, c, a, 2, 0, 2)}) {
@@ -94,6 +94,8 @@ TrianglePoint closestOnTriangle(const Eigen::Vector3d& p,
     result.squared_distance = (p - point).squaredNorm();
     return result;
   };
+  const Eigen::Vector3d ab = b - a;
+  const Eigen::Vector3d ac = c - a;
   const Eigen::Vector3d ap = p - a;
   const double d1 = ab.dot(ap);
   const double d2 = ac.dot(ap);
@@ -188,6 +190,7 @@ struct Data {
   struct FaceGeometry {
     std::array<Eigen::Vector3d, 3> corners;
     Eigen::Vector3d plane_normal;  ///< unit; zero for a sliver, whose plane bounds nothing
+    bool sliver;                   ///< isSliver() of its edges from corner 0
   };
   std::vector<FaceGeometry> face_geometry;
   // Embree works in float; coordinates are shifted to the box centre to keep float precision
@@ -287,8 +290,8 @@ bool considerFace(PointQueryState& state, int face) {
   if (planeBeyondReach(state, geometry)) {
     return false;
   }
-  const TrianglePoint candidate =
-      closestOnTriangle(state.query, geometry.corners[0], geometry.corners[1], geometry.corners[2]);
+  const TrianglePoint candidate = closestOnTriangle(
+      state.query, geometry.corners[0], geometry.corners[1], geometry.corners[2], geometry.sliver);
   if (!std::isfinite(candidate.squared_distance) ||
       !(std::sqrt(candidate.squared_distance) <= state.max_distance)) {
     return false;
@@ -372,9 +375,8 @@ void mesh_query_internal::Data::computeFaceGeometry() {
     }
     // Where closestOnTriangle() treats a face as its edges, the computed normal may point
     // anywhere.
-    const bool sliver =
-        isSliver(face.corners[1] - face.corners[0], face.corners[2] - face.corners[0]);
-    face.plane_normal = sliver ? Eigen::Vector3d::Zero() : mesh.face_normals[i];
+    face.sliver = isSliver(face.corners[1] - face.corners[0], face.corners[2] - face.corners[0]);
+    face.plane_normal = face.sliver ? Eigen::Vector3d::Zero() : mesh.face_normals[i];
   }
 }
 

@@ -113,6 +113,10 @@ struct PointIndex::Impl {
   Neighbour neighbour(const Eigen::Vector3d& query, std::uint32_t index) const {
     return Neighbour{original[index], squaredDistance(query, points[index])};
   }
+
+  // Tree indices and squared distances of the points within `radius`, nearest first.
+  std::vector<std::pair<std::uint32_t, double>> withinNearestFirst(const Eigen::Vector3d& query,
+                                                                   double radius) const;
 };
 
 PointIndex::PointIndex(const Points& points) : impl_(std::make_unique<Impl>()) {
@@ -226,23 +230,73 @@ class CountingResult {
   std::size_t count_ = 0;
 };
 
+using Found = std::vector<std::pair<std::uint32_t, double>>;  // tree index, squared distance
+
+bool foundCloser(const Found::value_type& a, const Found::value_type& b) {
+  return closerThan(a.second, a.first, b.second, b.first);
+}
+
+// `found` (squared distances in [0, squared_radius]) nearest first, ties by index: what
+// std::sort with foundCloser gives, in linear time. On a surface the points of a ball spread
+// evenly over its squared radius (area grows with r²), so as many buckets of equal width in r²
+// as points hold about one each; a bucket is sorted by the full rule, and buckets keep the order
+// of distance because the bucket number never falls as the distance grows.
+void sortNearestFirst(Found& found, double squared_radius) {
+  constexpr std::size_t kFewForBuckets = 64;
+  const std::size_t count = found.size();
+  if (count < kFewForBuckets || !(squared_radius > 0.0) || !std::isfinite(squared_radius)) {
+    std::sort(found.begin(), found.end(), foundCloser);
+    return;
+  }
+  const double per_bucket = static_cast<double>(count) / squared_radius;
+  const auto bucket = [&](double squared_distance) {
+    return std::min(count - 1, static_cast<std::size_t>(squared_distance * per_bucket));
+  };
+  std::vector<std::uint32_t> starts(count + 1, 0);
+  for (const auto& entry : found) {
+    ++starts[bucket(entry.second) + 1];
+  }
+  std::partial_sum(starts.begin(), starts.end(), starts.begin());
+  Found ordered(count);
+  std::vector<std::uint32_t> next(starts.begin(), starts.end() - 1);
+  for (const auto& entry : found) {
+    ordered[next[bucket(entry.second)]++] = entry;
+  }
+  for (std::size_t b = 0; b < count; ++b) {
+    if (starts[b + 1] - starts[b] > 1) {
+      std::sort(ordered.begin() + starts[b], ordered.begin() + starts[b + 1], foundCloser);
+    }
+  }
+  found.swap(ordered);
+}
+
 }  // namespace
 
-std::vector<Neighbour> PointIndex::within(const Eigen::Vector3d& query, double radius) const {
-  std::vector<Neighbour> result;
-  if (!(radius >= 0.0) || impl_->points.empty() || !query.allFinite()) {
-    return result;
+Found PointIndex::Impl::withinNearestFirst(const Eigen::Vector3d& query, double radius) const {
+  Found found;
+  if (!(radius >= 0.0) || points.empty() || !query.allFinite()) {
+    return found;
   }
-  // Unsorted by nanoflann: the sort below orders by (distance, index) whatever order it gets.
-  std::vector<std::pair<std::uint32_t, double>> found;
-  impl_->tree->radiusSearch(
-      query.data(), inclusiveSquaredRadius(radius), found, nanoflann::SearchParams(0, 0.0f, false));
-  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
-    return closerThan(a.second, a.first, b.second, b.first);
-  });
-  result.reserve(found.size());
-  for (const auto& entry : found) {
-    result.push_back(impl_->neighbour(query, entry.first));
+  const double squared_radius = inclusiveSquaredRadius(radius);
+  tree->radiusSearch(query.data(), squared_radius, found, nanoflann::SearchParams(0, 0.0f, false));
+  sortNearestFirst(found, squared_radius);
+  return found;
+}
+
+std::vector<Neighbour> PointIndex::within(const Eigen::Vector3d& query, double radius) const {
+  return spreadWithin(query, radius, std::numeric_limits<std::size_t>::max());
+}
+
+std::vector<Neighbour> PointIndex::spreadWithin(const Eigen::Vector3d& query,
+                                                double radius,
+                                                std::size_t count) const {
+  const Found found = impl_->withinNearestFirst(query, radius);
+  const std::size_t stride =
+      std::max<std::size_t>(1, found.size() / std::max<std::size_t>(1, count));
+  std::vector<Neighbour> result;
+  result.reserve((found.size() + stride - 1) / stride);
+  for (std::size_t j = 0; j < found.size(); j += stride) {
+    result.push_back(impl_->neighbour(query, found[j].first));
   }
   return result;
 }

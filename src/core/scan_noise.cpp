@@ -16,8 +16,8 @@ namespace freeform_inspection {
 namespace {
 
 constexpr int kMinNeighbours = 16;
-// A fit needs tens of neighbours, not the thousands a widened radius holds: at most this many,
-// evenly taken, are fitted.
+// A fit needs tens of neighbours, not the thousands a widened radius holds: about this many,
+// spread from the nearest to the farthest (PointIndex::spreadWithin), are fitted.
 constexpr std::size_t kMaxFitted = 192;
 // An evenly spread subset is indexed: a 1M-point scan took 1.4 s to index and search in full.
 constexpr std::size_t kIndexed = 50000;
@@ -27,10 +27,10 @@ constexpr int kWidenings = 3;
 // RMS distance of `neighbours` to their least-squares quadric w = q(u, v) over the plane of
 // their principal spread, with 6 degrees of freedom removed; NaN when the fit is singular.
 double quadricResidual(const Points& points, const std::vector<Neighbour>& neighbours) {
-  const std::size_t stride = std::max<std::size_t>(1, neighbours.size() / kMaxFitted);
   std::vector<Eigen::Vector3d> taken;
-  for (std::size_t j = 0; j < neighbours.size(); j += stride) {
-    taken.push_back(points[static_cast<std::size_t>(neighbours[j].index)]);
+  taken.reserve(neighbours.size());
+  for (const Neighbour& neighbour : neighbours) {
+    taken.push_back(points[static_cast<std::size_t>(neighbour.index)]);
   }
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const auto& p : taken) {
@@ -99,7 +99,7 @@ double measureAt(const Points& points,
 #pragma omp parallel for schedule(dynamic, 16)
   for (long s = 0; s < count; ++s) {
     const auto& query = points[static_cast<std::size_t>(s) * points.size() / taken];
-    std::vector<Neighbour> neighbours = index.within(query, radius);
+    std::vector<Neighbour> neighbours = index.spreadWithin(query, radius, kMaxFitted);
     if (neighbours.size() < static_cast<std::size_t>(kMinNeighbours)) {
       neighbours = index.nearest(query, kMinNeighbours);
     }

@@ -161,6 +161,71 @@ TEST(PointIndex, TiesOnALatticeAreBrokenByIndex) {
   }
 }
 
+// Wide balls are ordered by buckets of squared distance, not by a full sort: the order must
+// still be the full sort's, rank for rank, where the points spread evenly over the squared
+// radius (a plane through the query), where they all share one distance (a sphere about the
+// query: one bucket), and where ties cross buckets (a lattice).
+TEST(PointIndex, WithinOrdersWideBallsAsAFullSortDoes) {
+  std::mt19937 rng(kSeed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Points plane;
+  Points sphere;
+  for (int i = 0; i < 3000; ++i) {
+    plane.emplace_back(unit(rng), unit(rng), 1e-3 * unit(rng));
+    const Eigen::Vector3d direction(unit(rng), unit(rng), unit(rng));
+    sphere.push_back(0.7 * direction.normalized());
+  }
+  Points lattice;
+  for (int i = 0; i < 12; ++i) {
+    for (int j = 0; j < 12; ++j) {
+      for (int l = 0; l < 12; ++l) {
+        lattice.emplace_back(0.25 * i, 0.25 * j, 0.25 * l);
+      }
+    }
+  }
+  const std::vector<std::pair<const Points*, std::string>> sets = {
+      {&plane, "plane"}, {&sphere, "sphere"}, {&lattice, "lattice"}};
+  for (const auto& [points, name] : sets) {
+    const PointIndex index(*points);
+    for (const Eigen::Vector3d& query :
+         {Eigen::Vector3d(0.0, 0.0, 0.0), (*points)[17], Eigen::Vector3d(1.5, 1.5, 1.5)}) {
+      for (const double radius : {0.4, 0.7, 1.5}) {
+        const std::vector<Neighbour> expected = bruteWithin(*points, query, radius);
+        expectSame(expected, index.within(query, radius), name + " r " + std::to_string(radius));
+      }
+    }
+  }
+}
+
+// spreadWithin is within() taken every s-th point, s = max(1, n / count), from the nearest.
+TEST(PointIndex, SpreadWithinTakesEveryStrideThPointOfWithin) {
+  const Points points = randomPoints(5000, kSeed);
+  const PointIndex index(points);
+  for (const double radius : {0.05, 0.5, 4.0}) {
+    for (const std::size_t count : {std::size_t{1},
+                                    std::size_t{7},
+                                    std::size_t{192},
+                                    std::numeric_limits<std::size_t>::max()}) {
+      for (const auto& query : queries(points, kSeed)) {
+        const std::vector<Neighbour> all = index.within(query, radius);
+        const std::size_t stride = std::max<std::size_t>(1, all.size() / count);
+        std::vector<Neighbour> expected;
+        for (std::size_t j = 0; j < all.size(); j += stride) {
+          expected.push_back(all[j]);
+        }
+        const std::vector<Neighbour> spread = index.spreadWithin(query, radius, count);
+        expectSame(expected, spread, "count " + std::to_string(count));
+        if (all.size() >= count) {
+          EXPECT_LE(spread.size(), 2 * count - 1);
+        } else {
+          EXPECT_EQ(spread.size(), all.size());
+        }
+      }
+    }
+  }
+  EXPECT_TRUE(index.spreadWithin(points[0], -1.0, 192).empty());
+}
+
 TEST(PointIndex, KLargerThanTheSetReturnsEveryPointSorted) {
   const Points points = randomPoints(10, kSeed);
   const PointIndex index(points);
