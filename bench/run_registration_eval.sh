@@ -3,7 +3,8 @@
 # Usage: bench/run_registration_eval.sh BUILD_DIR [CASES] [MESH_DIR]
 #   BUILD_DIR  a build configured with -DFREEFORM_INSPECTION_BUILD_BENCH=ON
 #   CASES      cases per cell of the table (default 10)
-#   MESH_DIR   extra CAD meshes in metres (*.stl) to evaluate besides the shipped blade
+#   MESH_DIR   extra CAD meshes to evaluate besides the shipped blade: *.stl in metres, *.obj in
+#              millimetres (ABC models), as bench/run_camera_eval.sh reads them
 # Environment: FIRST_SEED (default 1) is the seed of each row's first case, so other blocks of
 # seeds can be run (FIRST_SEED=7 with 6 cases: seeds 7-12). EVAL_FLAGS (default empty) is added to
 # every registration_eval call, e.g. EVAL_FLAGS="--config other.yaml" to compare a setting.
@@ -20,7 +21,10 @@ eval_bin="${build}/registration_eval"
 parts=("${root}/data/blade/blade.stl:0.001")
 if [ -n "${mesh_dir}" ]; then
   for mesh in "${mesh_dir}"/*.stl; do
-    parts+=("${mesh}:1")
+    if [ -e "${mesh}" ]; then parts+=("${mesh}:1"); fi
+  done
+  for mesh in "${mesh_dir}"/*.obj; do
+    if [ -e "${mesh}" ]; then parts+=("${mesh}:0.001"); fi
   done
 fi
 sets=("full 0.5%|--noise 0.005" "full 1%|--noise 0.01" "full 2%|--noise 0.02"

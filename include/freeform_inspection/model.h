@@ -50,6 +50,8 @@ class Model {
 
   const TriangleMesh& mesh() const { return mesh_; }
   const BoundingBox& bounds() const { return bounds_; }
+  /// How thin the part is [m] (principalThickness() of the mesh, mesh.h).
+  double thickness() const { return thickness_; }
   const MeshTopology& topology() const { return topology_; }
   const std::string& id() const { return id_; }
   const std::string& source() const { return source_; }  ///< file it was loaded from
@@ -81,6 +83,7 @@ class Model {
   OrientationResult orientation_;  // before mesh_: filled while mesh_ is oriented
   TriangleMesh mesh_;
   BoundingBox bounds_;
+  double thickness_ = 0.0;
   MeshTopology topology_;
   std::string id_;
   std::string source_;

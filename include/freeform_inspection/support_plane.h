@@ -20,7 +20,10 @@
 /// noise) cannot be a face of the part. Such a plane is the support; its points within the noise
 /// band, and any behind it, are removed. A planar face of the part is never wider than L and is
 /// kept, whatever its share of the scan; a support seen only as a narrow strip around the part is
-/// kept too (the registration then fails safely, and a crop is needed).
+/// kept too (the registration then fails safely, and a crop is needed). The test holds only for
+/// a band thinner than the part: a band as thick as a slender part holds all of it and, with
+/// stray points about it, reaches wider than L. So the band never exceeds a quarter of the
+/// part's thickness (its extent along its axis of least spread).
 
 namespace freeform_inspection {
 
@@ -64,9 +67,12 @@ struct SupportResult {
 /// @param points finite scan points [m]
 /// @param noise_sigma [m] the scan's measured noise (scan_noise.h), 0 when unknown
 /// @param part_diameter [m] the CAD's bounding-box diagonal L
+/// @param part_thickness [m] the CAD's principalThickness() (mesh.h): the band is at most a
+/// quarter of it
 SupportResult findSupports(const Points& points,
                            double noise_sigma,
                            double part_diameter,
+                           double part_thickness,
                            const SupportConfig& config);
 
 }  // namespace freeform_inspection

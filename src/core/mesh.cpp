@@ -6,8 +6,10 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <unordered_map>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 namespace freeform_inspection {
@@ -63,6 +65,40 @@ BoundingBox computeBoundingBox(const Points& points) {
     box.max = box.max.cwiseMax(p);
   }
   return box;
+}
+
+double principalThickness(const TriangleMesh& mesh) {
+  double total = 0.0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  // The surface's exact moments: over a triangle (a, b, c) of area A, ∫x dA = A s / 3 and
+  // ∫x xᵀ dA = A (a aᵀ + b bᵀ + c cᵀ + s sᵀ) / 12, s = a + b + c.
+  for (const Eigen::Vector3i& face : mesh.faces) {
+    const double area = triangleArea(mesh.vertices, face);
+    const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(face[0])];
+    const Eigen::Vector3d& b = mesh.vertices[static_cast<std::size_t>(face[1])];
+    const Eigen::Vector3d& c = mesh.vertices[static_cast<std::size_t>(face[2])];
+    const Eigen::Vector3d sum = a + b + c;
+    total += area;
+    mean += area / 3.0 * sum;
+    second += area / 12.0 *
+              (a * a.transpose() + b * b.transpose() + c * c.transpose() + sum * sum.transpose());
+  }
+  if (!(total > 0.0)) {
+    return 0.0;
+  }
+  mean /= total;
+  const Eigen::Matrix3d covariance = second / total - mean * mean.transpose();
+  // Eigenvalues ascending: column 0 is the axis of least spread.
+  const Eigen::Vector3d axis =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(0);
+  double low = std::numeric_limits<double>::infinity();
+  double high = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& v : mesh.vertices) {
+    low = std::min(low, v.dot(axis));
+    high = std::max(high, v.dot(axis));
+  }
+  return high - low;
 }
 
 double triangleArea(const Points& vertices, const Eigen::Vector3i& face) {

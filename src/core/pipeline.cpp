@@ -843,8 +843,11 @@ void runStages(const Model& model,
   // bounds the residual of an acceptable pose later (registerScan).
   const double r_1 = model.descriptors().radii.front();
   result->scan_noise = estimateScanNoise(cleaned.scan.points, 2.0 * r_1);
-  const SupportResult supports = findSupports(
-      cleaned.scan.points, result->scan_noise, model.bounds().diagonal(), config.support);
+  const SupportResult supports = findSupports(cleaned.scan.points,
+                                              result->scan_noise,
+                                              model.bounds().diagonal(),
+                                              model.thickness(),
+                                              config.support);
   if (supports.removed > 0) {
     cleaned = withoutSupports(cleaned.scan, supports, model.bounds(), config.input);
     result->counts.support_points = supports.removed;
