@@ -244,13 +244,15 @@ bool foundCloser(const Found::value_type& a, const Found::value_type& b) {
 void sortNearestFirst(Found& found, double squared_radius) {
   constexpr std::size_t kFewForBuckets = 64;
   const std::size_t count = found.size();
-  if (count < kFewForBuckets || !(squared_radius > 0.0) || !std::isfinite(squared_radius)) {
+  const double per_bucket = static_cast<double>(count) / squared_radius;
+  if (count < kFewForBuckets || !(per_bucket > 0.0) || !std::isfinite(per_bucket)) {
     std::sort(found.begin(), found.end(), foundCloser);
     return;
   }
-  const double per_bucket = static_cast<double>(count) / squared_radius;
+  // Clamped before the conversion: a distance a nudge past the radius lands in the last bucket.
+  const double last = static_cast<double>(count - 1);
   const auto bucket = [&](double squared_distance) {
-    return std::min(count - 1, static_cast<std::size_t>(squared_distance * per_bucket));
+    return static_cast<std::size_t>(std::min(last, squared_distance * per_bucket));
   };
   std::vector<std::uint32_t> starts(count + 1, 0);
   for (const auto& entry : found) {

@@ -197,6 +197,19 @@ TEST(PointIndex, WithinOrdersWideBallsAsAFullSortDoes) {
   }
 }
 
+// Many points at one place and radii whose square is denormal or zero: the buckets' width in r²
+// would overflow, and the full sort orders them instead.
+TEST(PointIndex, WithinOrdersCoincidentPointsAtTinyRadii) {
+  Points points(200, Eigen::Vector3d(0.25, -0.5, 1.0));
+  points.emplace_back(0.25, -0.5, 1.0 + 1e-170);
+  const PointIndex index(points);
+  for (const double radius : {0.0, 1e-200, 1e-165, 1.0}) {
+    expectSame(bruteWithin(points, points[3], radius),
+               index.within(points[3], radius),
+               "coincident r " + std::to_string(radius));
+  }
+}
+
 // spreadWithin is within() taken every s-th point, s = max(1, n / count), from the nearest.
 TEST(PointIndex, SpreadWithinTakesEveryStrideThPointOfWithin) {
   const Points points = randomPoints(5000, kSeed);
