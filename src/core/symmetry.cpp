@@ -16,6 +16,8 @@
 namespace freeform_inspection {
 namespace {
 
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
 // The area-weighted centroid of a surface graph, its principal axes (columns) and the spread
 // along each [m].
 struct PrincipalFrame {
@@ -67,6 +69,81 @@ std::optional<Eigen::Matrix3d> normalAxes(const SurfaceGraph& graph) {
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
   return solver.eigenvectors();
+}
+
+// The directions of a walled part's flat faces (columns, right-handed): the normal direction
+// (either sign) with the most cell area within kWallConeDeg of it, then the most populated one
+// square to it, then their cross product. Where two walls carry about the same area the
+// scatter's eigenvectors (normalAxes) may lie anywhere between them: a machined L-block's bores
+// and chamfer tilted its x and y axes by 16°, and the half turn that swaps its legs was never
+// tried. Empty unless two walls square to each other hold kMinWallShare of the area each (a disc
+// has one: its rim's normals spread all round).
+std::optional<Eigen::Matrix3d> wallAxes(const SurfaceGraph& graph) {
+  constexpr double kWallConeDeg = 10.0;
+  constexpr double kMinWallShare = 0.1;
+  constexpr std::size_t kCandidates = 512;  // cell normals tried as wall directions
+  if (graph.normals.size() != graph.size() || graph.size() == 0) {
+    return std::nullopt;
+  }
+  const double cone = std::cos(kWallConeDeg * kDegree);
+  const double square = std::sin(kWallConeDeg * kDegree);
+  double total = 0.0;
+  for (const double area : graph.area) {
+    total += area;
+  }
+  // The area within the cone about ±d, and its normals' area-weighted mean turned to d's side.
+  const auto wall = [&](const Eigen::Vector3d& d) {
+    double area = 0.0;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (std::size_t c = 0; c < graph.size(); ++c) {
+      const double along = graph.normals[c].dot(d);
+      if (std::abs(along) > cone) {
+        area += graph.area[c];
+        sum += (along > 0.0 ? graph.area[c] : -graph.area[c]) * graph.normals[c];
+      }
+    }
+    return std::make_pair(area, Eigen::Vector3d(sum.normalized()));
+  };
+  const std::size_t stride = std::max<std::size_t>(1, graph.size() / kCandidates);
+  // The most populated wall, among directions square to `across` when one is given.
+  const auto mostPopulated = [&](const Eigen::Vector3d* across) {
+    std::pair<double, Eigen::Vector3d> best{0.0, Eigen::Vector3d::Zero()};
+    for (std::size_t c = 0; c < graph.size(); c += stride) {
+      const Eigen::Vector3d& d = graph.normals[c];
+      if (d.allFinite() && (across == nullptr || std::abs(d.dot(*across)) < square)) {
+        const auto candidate = wall(d);
+        if (candidate.first > best.first) {
+          best = candidate;
+        }
+      }
+    }
+    return best;
+  };
+  const auto first = mostPopulated(nullptr);
+  if (!(first.first >= kMinWallShare * total)) {
+    return std::nullopt;
+  }
+  const auto second = mostPopulated(&first.second);
+  if (!(second.first >= kMinWallShare * total)) {
+    return std::nullopt;
+  }
+  const Eigen::Vector3d x = first.second;
+  const Eigen::Vector3d y = (second.second - second.second.dot(x) * x).normalized();
+  Eigen::Matrix3d axes;
+  axes << x, y, x.cross(y);
+  return axes.allFinite() ? std::optional<Eigen::Matrix3d>(axes) : std::nullopt;
+}
+
+// True when every axis of `a` lies within a few degrees of an axis of `b` (either sign): the same
+// cube, whose turns need not be tried twice.
+bool sameCube(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  const double close = std::cos(3.0 * kDegree);
+  for (int i = 0; i < 3; ++i) {
+    if ((b.transpose() * a.col(i)).cwiseAbs().maxCoeff() < close) {
+      return false;
+    }
+  }
+  return true;
 }
 
 // The motion turning by `rotation` about `centroid`.
@@ -269,7 +346,16 @@ std::vector<Eigen::Isometry3d> principalFrameTurns(const SurfaceGraph& graph) {
 std::vector<Eigen::Isometry3d> normalFrameTurns(const SurfaceGraph& graph) {
   const std::optional<Eigen::Vector3d> centroid = areaCentroid(graph);
   const std::optional<Eigen::Matrix3d> axes = normalAxes(graph);
-  return centroid && axes ? cubeTurns(*axes, *centroid) : std::vector<Eigen::Isometry3d>();
+  if (!centroid || !axes) {
+    return {};
+  }
+  std::vector<Eigen::Isometry3d> turns = cubeTurns(*axes, *centroid);
+  const std::optional<Eigen::Matrix3d> walls = wallAxes(graph);
+  if (walls && !sameCube(*walls, *axes)) {
+    const std::vector<Eigen::Isometry3d> wall_turns = cubeTurns(*walls, *centroid);
+    turns.insert(turns.end(), wall_turns.begin(), wall_turns.end());
+  }
+  return turns;
 }
 
 }  // namespace freeform_inspection

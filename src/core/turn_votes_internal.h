@@ -36,5 +36,33 @@ std::vector<Eigen::Isometry3d> votedTurnStarts(const std::vector<Eigen::Isometry
                                                double cell,
                                                const TurnVoteConfig& config = TurnVoteConfig());
 
+/// Settings of surfaceVotedTurnStarts().
+struct SurfaceVoteConfig {
+  std::size_t scan_cells = 64;         ///< scan cells that vote (every n-th)
+  std::size_t cad_cells = 4096;        ///< CAD cells they may land on (every n-th)
+  double normal_tolerance_deg = 25.0;  ///< a pair's normals agree within this
+  double bin_cells = 4.0;              ///< width of a vote bin [cells]
+  double min_share = 0.5;              ///< of the voting cells the densest bin needs
+  std::size_t max_starts = 8;          ///< best supported starts kept
+};
+
+/// @brief Starts with the rotations of `turned` (poses T_cad_scan) and the translation the scan's
+/// surface votes for: under each rotation, every sampled scan cell votes for the translations
+/// that lay it on a sampled CAD cell whose normal agrees with its own (either sign unless the
+/// scan's normals are `oriented`, pointing out of the material), and the bin with votes from
+/// the most distinct scan cells gives the start, if it holds `config.min_share` of them (a
+/// generalised Hough transform over translations). Unlike votedTurnStarts() it needs no feature
+/// whose candidates hold the right CAD cell: a machined block's view with its legs swapped had
+/// none (docs/registration.md, "Turns placed by the surface"). Best supported first, poses not
+/// separate from a better one left out. Deterministic whatever the thread count.
+std::vector<Eigen::Isometry3d> surfaceVotedTurnStarts(
+    const std::vector<Eigen::Isometry3d>& turned,
+    const SurfaceGraph& scan,
+    const SurfaceGraph& cad,
+    bool oriented,
+    const Eigen::Vector3d& reference,
+    double cell,
+    const SurfaceVoteConfig& config = SurfaceVoteConfig());
+
 }  // namespace internal
 }  // namespace freeform_inspection

@@ -154,6 +154,30 @@ TEST(Symmetry, NormalFrameTurnsFollowTheWallsWhereUnequalFlangesTiltTheSpread) {
   }
 }
 
+TEST(Symmetry, NormalFrameTurnsIncludeTheWallsWhereTheScatterLiesBetweenThem) {
+  // The machined L-block's walls face along x, y and z, those along x and y with about equal area,
+  // so its bores, chamfer and notch turn the eigenvectors of the normals' scatter in the x-y plane
+  // anywhere between them (16° measured). The half turn about the bisector of x and z swaps its
+  // legs; only the walls' own frame (the most populated normal direction, then the one square to
+  // it) holds it. The scatter's 23 turns come first, the walls' 23 after them.
+  const ModelLoadResult loaded =
+      loadModel(std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/machined_l_block.stl", 1.0, "test");
+  ASSERT_TRUE(loaded.status.ok()) << loaded.status.message;
+  const std::vector<Eigen::Isometry3d> turns = normalFrameTurns(loaded.model->descriptors().graph);
+  ASSERT_EQ(turns.size(), 46u);
+  const std::vector<Eigen::Isometry3d> scatter(turns.begin(), turns.begin() + 23);
+  const Eigen::Matrix3d legs_swapped =
+      Eigen::AngleAxisd(M_PI, Eigen::Vector3d(1, 0, 1).normalized()).toRotationMatrix();
+  const double by_scatter = nearestTurnDeg(scatter, legs_swapped);
+  const double by_walls = nearestTurnDeg(turns, legs_swapped);
+  std::printf("legs swapped: scatter frame %.2f°, walls' frame %.3f°\n", by_scatter, by_walls);
+  EXPECT_GT(by_scatter, 10.0);
+  EXPECT_LT(by_walls, 1.0);
+  // A box with sides of three lengths: its walls are the scatter's own axes, no second frame.
+  const Model box(test::makeBox(kHalfExtent), "box", "test");
+  EXPECT_EQ(normalFrameTurns(box.descriptors().graph).size(), 23u);
+}
+
 TEST(Symmetry, ChannelsHalfTurnIsSlidAlongItToWhereItLiesBestOnItself) {
   // The hat channel's half turn about z (its flanges swapped) maps its ends onto each other only
   // about the middle of its 150 mm length (y); slid along y, the turned channel still lies along

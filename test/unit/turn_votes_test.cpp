@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Copyright 2026 The freeform_inspection authors
-// Translations of turned starts voted by the feature candidates (turn_votes_internal.h), on
-// cells whose true correspondences and pose are known.
+// Translations of turned starts voted by the feature candidates and by the surface
+// (turn_votes_internal.h), on cells whose true correspondences and pose are known.
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -9,6 +9,7 @@
 
 #include "../../src/core/turn_votes_internal.h"
 #include <gtest/gtest.h>
+#include <omp.h>
 
 namespace freeform_inspection {
 namespace {
@@ -106,6 +107,106 @@ TEST(TurnVotes, StartsThatAreOnePoseAreKeptOnceBestSupportedFirst) {
   ASSERT_EQ(starts.size(), 2u);
   EXPECT_LT((starts[0].translation() - truth.translation()).norm(), 1e-9);
   EXPECT_LT((starts[1].translation() - other.translation()).norm(), 1e-9);
+}
+
+// Cells every `step` metres on the faces of the box [low, high], with outward normals: the
+// two boxes of an L-shaped block give a CAD whose cells are known.
+void addBoxCells(const Eigen::Vector3d& low,
+                 const Eigen::Vector3d& high,
+                 double step,
+                 SurfaceGraph* graph) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3;
+    const int v = (axis + 2) % 3;
+    for (const double side : {-1.0, 1.0}) {
+      for (double a = low[u] + 0.5 * step; a < high[u]; a += step) {
+        for (double b = low[v] + 0.5 * step; b < high[v]; b += step) {
+          Eigen::Vector3d centroid;
+          centroid[axis] = side < 0.0 ? low[axis] : high[axis];
+          centroid[u] = a;
+          centroid[v] = b;
+          graph->centroids.push_back(centroid);
+          graph->normals.push_back(side * Eigen::Vector3d::Unit(axis));
+          graph->area.push_back(step * step);
+        }
+      }
+    }
+  }
+}
+
+// An L-block of 80 × 50 × 45 mm (a base plate and an upright, as test/data's machined block),
+// its cells 2 mm apart; the scan sees the cells with x < 30 mm (the upright and the base's end)
+// from the pose `truth`.
+struct SurfaceCase {
+  SurfaceGraph cad;
+  SurfaceGraph scan;
+};
+
+SurfaceCase makeSurfaceCase(const Eigen::Isometry3d& truth) {
+  constexpr double kStep = 0.002;
+  SurfaceCase c;
+  addBoxCells({0.0, 0.0, 0.0}, {0.08, 0.05, 0.015}, kStep, &c.cad);
+  addBoxCells({0.0, 0.0, 0.015}, {0.02, 0.05, 0.045}, kStep, &c.cad);
+  for (std::size_t i = 0; i < c.cad.size(); ++i) {
+    if (c.cad.centroids[i].x() < 0.03) {
+      c.scan.centroids.push_back(truth.inverse() * c.cad.centroids[i]);
+      c.scan.normals.push_back(truth.linear().transpose() * c.cad.normals[i]);
+      c.scan.area.push_back(c.cad.area[i]);
+    }
+  }
+  return c;
+}
+
+TEST(TurnVotes, TheSurfaceVotesForTheTranslationOfATurnWithoutAnyFeature) {
+  // A start with the true rotation 50 mm off (a turn about the wrong centre) comes back within a
+  // cell of the truth (cells of 2 mm, bins of 4 cells); a rotation 37° off gets no start: the
+  // normals of most cells agree with none of the CAD's.
+  const Eigen::Isometry3d truth =
+      pose(Eigen::AngleAxisd(2.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix(),
+           {0.4, -0.2, 0.1});
+  const SurfaceCase c = makeSurfaceCase(truth);
+  const double cell = 0.002;
+  const Eigen::Isometry3d off =
+      pose(truth.linear(), truth.translation() + Eigen::Vector3d(0.03, -0.02, 0.035));
+  const Eigen::Isometry3d turned =
+      pose(Eigen::AngleAxisd(37.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()) * truth.linear(),
+           truth.translation());
+  for (const bool oriented : {true, false}) {
+    const std::vector<Eigen::Isometry3d> starts = internal::surfaceVotedTurnStarts(
+        {turned, off}, c.scan, c.cad, oriented, Eigen::Vector3d::Zero(), cell);
+    ASSERT_EQ(starts.size(), 1u);
+    const double translation_error = (starts[0].translation() - truth.translation()).norm();
+    std::printf("oriented %d: start %.2f mm from the truth\n", oriented, 1e3 * translation_error);
+    EXPECT_LT(Eigen::AngleAxisd(starts[0].linear().transpose() * truth.linear()).angle(), 1e-12);
+    EXPECT_LT(translation_error, cell);
+  }
+}
+
+TEST(TurnVotes, TheSurfaceVotesAreTheSameWhateverTheThreadCount) {
+  const Eigen::Isometry3d truth =
+      pose(Eigen::AngleAxisd(0.7, Eigen::Vector3d(0, 1, 1).normalized()).toRotationMatrix(),
+           {0.0, 0.2, 0.0});
+  const SurfaceCase c = makeSurfaceCase(truth);
+  std::vector<Eigen::Isometry3d> turns;
+  for (int k = 0; k < 12; ++k) {  // the truth's rotation among others, each 10 mm off
+    const Eigen::Matrix3d rotation =
+        Eigen::AngleAxisd(k * M_PI / 6.0, Eigen::Vector3d::UnitY()) * truth.linear();
+    turns.push_back(pose(rotation, truth.translation() + Eigen::Vector3d(0.01, 0.0, 0.0)));
+  }
+  const auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    return internal::surfaceVotedTurnStarts(
+        turns, c.scan, c.cad, true, Eigen::Vector3d::Zero(), 0.002);
+  };
+  const std::vector<Eigen::Isometry3d> one = run(1);
+  const std::vector<Eigen::Isometry3d> two = run(2);
+  omp_set_num_threads(omp_get_num_procs());
+  ASSERT_FALSE(one.empty());
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_TRUE(one[i].matrix() == two[i].matrix()) << "start " << i;
+  }
+  EXPECT_LT((one.front().translation() - truth.translation()).norm(), 0.002);
 }
 
 }  // namespace
