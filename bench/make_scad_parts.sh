@@ -5,6 +5,8 @@
 #   bash bench/make_scad_parts.sh /tmp/scad_parts
 #   bash bench/run_registration_eval.sh BUILD 3 /tmp/scad_parts
 # Needs `apt-get install openscad` (the benchmarks only; the package never does).
+# OpenSCAD 2021.01's export is not bit-stable (two runs wrote different elbow and pump cover
+# files): to compare two builds, run both on the files of one run.
 # Usage: bench/make_scad_parts.sh OUT_DIR
 set -euo pipefail
 out="$1"

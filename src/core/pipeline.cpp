@@ -91,11 +91,14 @@ constexpr double kProbeBelowSurface = 0.99;
 // Below this share the turns of turnStarts() are tried as well, as they are and where the
 // features' votes place them, and the best poses found are probed in turn. Right poses of
 // camera views at 0.5 % noise put 0.91-1.0 there, so most scans skip those refinements (92
-// turns, up to 32 placed, 24 probes); a turn only wins where the scan sides with it.
+// turns, up to 138 where the walls' frames differ from the normals' axes, up to 32 placed by the
+// features and 8 by the surface, 14 probes about each of the 3 best rivals); a turn only wins
+// where the scan sides with it.
 constexpr double kRetryBelowSurface = 0.95;
 // From there up to kProbeBelowSurface, the half turns about the CAD's wall directions alone
-// (9 of normalFrameTurns): a bent sheet's view with its legs swapped explains 98 % of itself,
-// and the probes do not turn it (docs/registration.md, "Half turns about the walls up to 99 %").
+// (the 9 half turns of each frame normalFrameTurns gives): a bent sheet's view with its legs
+// swapped explains 98 % of itself, and the probes do not turn it (docs/registration.md, "Half
+// turns about the walls up to 99 %").
 // Every turn there made camera views, whose right poses often put 0.95-0.99 on the CAD,
 // 1.4-2.8x slower; the half turns cost them 4 %.
 // The probes along the fit's weakest motions: this many motions, each taken these many cells
@@ -551,7 +554,7 @@ void registerScan(const Model& model,
     } else {
       std::vector<Eigen::Isometry3d> wall_turns;
       for (const Eigen::Isometry3d& wall_turn : normalFrameTurns(cad.graph)) {
-        if (Eigen::AngleAxisd(wall_turn.linear()).angle() > 0.9 * kPi) {  // the 9 half turns
+        if (Eigen::AngleAxisd(wall_turn.linear()).angle() > 0.9 * kPi) {  // 9 half turns a frame
           wall_turns.push_back(wall_turn * icp.T_cad_scan);
         }
       }
