@@ -108,8 +108,7 @@ constexpr double kProbeCells[] = {2.0, 4.0};
 // And along the weakest motion alone, these shares of L (the points' RMS displacement) either
 // way: a partial view of a cast pipe elbow at 2 % noise, turned 40° along its bend, explained 99 %
 // of the view (the truth 99.5 %), and ICP from every start within a few cells stayed in that
-// valley; from 0.15-0.3 L it reached the truth (docs/registration.md, "Far along the weakest
-// motion").
+// valley; from 0.15-0.3 L it reached the truth (docs/registration.md, "Parts never seen").
 constexpr double kFarProbeReaches[] = {0.1, 0.2, 0.3};
 // Retried poses apart from the pose whose weakest motions are probed in turn.
 constexpr std::size_t kProbedRivals = 3;

@@ -53,7 +53,7 @@ struct SurfaceVoteConfig {
 /// the most distinct scan cells gives the start, if it holds `config.min_share` of them (a
 /// generalised Hough transform over translations). Unlike votedTurnStarts() it needs no feature
 /// whose candidates hold the right CAD cell: a machined block's view with its legs swapped had
-/// none (docs/registration.md, "Turns placed by the surface"). Best supported first, poses not
+/// none (docs/registration.md, "Parts never seen"). Best supported first, poses not
 /// separate from a better one left out. Deterministic whatever the thread count.
 std::vector<Eigen::Isometry3d> surfaceVotedTurnStarts(
     const std::vector<Eigen::Isometry3d>& turned,
