@@ -71,6 +71,9 @@ class Model {
   double cellSize() const;
   /// Motions that map the model (nearly) onto itself, found once (symmetry.h).
   const std::vector<Symmetry>& symmetries() const { return symmetries_; }
+  /// normalFrameTurns() of the CAD's surface graph (symmetry.h), computed once on construction:
+  /// the turns a retried scan's pose is tried at, which are facts of the part, not of the scan.
+  const std::vector<Eigen::Isometry3d>& normalFrameTurns() const { return normal_frame_turns_; }
   /// Per face, a bit per edge (bit e: edge from corner e to corner e+1) set when the edge is on
   /// the border of an open surface; empty for a closed mesh.
   const std::vector<std::uint8_t>& faceBorderEdges() const { return face_border_edges_; }
@@ -92,6 +95,7 @@ class Model {
   DescriptorConfig descriptor_config_;
   std::unique_ptr<MeshQuery> query_;
   std::vector<Symmetry> symmetries_;
+  std::vector<Eigen::Isometry3d> normal_frame_turns_;  // after descriptors_: computed from them
   std::vector<std::uint8_t> face_border_edges_;
   bool from_cache_ = false;
 };

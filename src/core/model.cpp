@@ -116,6 +116,7 @@ Model::Model(TriangleMesh mesh,
       face_border_edges_(borderEdgeMasks(mesh_)) {
   descriptors_ = describeModel(mesh_, bounds_.diagonal(), descriptor_config);
   symmetries_ = findSymmetries(descriptors_, *query_, cellSize(), bounds_.diagonal());
+  normal_frame_turns_ = freeform_inspection::normalFrameTurns(descriptors_.graph);
 }
 
 Model::Model(ModelCacheEntry entry,
@@ -134,6 +135,7 @@ Model::Model(ModelCacheEntry entry,
       descriptor_config_(descriptor_config),
       query_(std::make_unique<MeshQuery>(mesh_)),
       symmetries_(std::move(entry.symmetries)),
+      normal_frame_turns_(freeform_inspection::normalFrameTurns(descriptors_.graph)),
       face_border_edges_(std::move(entry.face_border_edges)),
       from_cache_(true) {}
 

@@ -284,7 +284,7 @@ std::vector<Eigen::Isometry3d> turnStarts(const Model& model,
   for (const Eigen::Isometry3d& turn : principalFrameTurns(scan)) {
     starts.push_back(pose * turn);
   }
-  for (const Eigen::Isometry3d& turn : normalFrameTurns(model.descriptors().graph)) {
+  for (const Eigen::Isometry3d& turn : model.normalFrameTurns()) {
     starts.push_back(turn * pose);
   }
   for (const Eigen::Isometry3d& turn : normalFrameTurns(scan)) {
@@ -552,7 +552,7 @@ void registerScan(const Model& model,
       retried.insert(retried.end(), probed.begin(), probed.end());
     } else {
       std::vector<Eigen::Isometry3d> wall_turns;
-      for (const Eigen::Isometry3d& wall_turn : normalFrameTurns(cad.graph)) {
+      for (const Eigen::Isometry3d& wall_turn : model.normalFrameTurns()) {
         if (Eigen::AngleAxisd(wall_turn.linear()).angle() > 0.9 * kPi) {  // 9 half turns a frame
           wall_turns.push_back(wall_turn * icp.T_cad_scan);
         }
