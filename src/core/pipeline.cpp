@@ -110,6 +110,11 @@ constexpr double kProbeCells[] = {2.0, 4.0};
 // of the view (the truth 99.5 %), and ICP from every start within a few cells stayed in that
 // valley; from 0.15-0.3 L it reached the truth (docs/registration.md, "Parts never seen").
 constexpr double kFarProbeReaches[] = {0.1, 0.2, 0.3};
+// ... and refined with this many times the retries' cut-off (4 cells instead of 2.5): a probe
+// lands 10-15° from the truth along the bend, where most cells lie farther from their surface
+// than 2.5 cells, and a view of the same elbow at 0.5 % noise stayed 38° along it
+// (docs/registration.md, "Far probes pair farther").
+constexpr double kFarProbeCutoffScale = 1.6;
 // Retried poses apart from the pose whose weakest motions are probed in turn.
 constexpr std::size_t kProbedRivals = 3;
 // How far the centroids must lean the best pose's way before the fitted cells may dismiss a
@@ -128,12 +133,15 @@ struct RefinedPose {
 };
 
 // A short ICP on the verification cells and the score after it: a coarse fit a few degrees off
-// scores low until refined, and a flip that survived verification stays low.
+// scores low until refined, and a flip that survived verification stays low. ICP's first cut-off
+// is `cutoff_scale` times the score's truncation; the score keeps the truncation, so that the
+// scores of all starts compare.
 RefinedPose refineQuickly(const Model& model,
                           const Eigen::Isometry3d& pose,
                           const VerificationSet& set,
                           const PipelineConfig& config,
-                          bool facing) {
+                          bool facing,
+                          double cutoff_scale) {
   const double truncation = config.registration.verification_distance_cells * model.cellSize();
   IcpConfig quick = config.icp;
   quick.max_iterations = std::min(quick.max_iterations, 15);
@@ -144,7 +152,7 @@ RefinedPose refineQuickly(const Model& model,
   const IcpResult icp = refinePose(model.query(),
                                    set.points,
                                    pose,
-                                   truncation,
+                                   cutoff_scale * truncation,
                                    model.bounds().diagonal(),
                                    quick,
                                    (facing && set.oriented) ? set.normals : Points());
@@ -160,13 +168,14 @@ std::vector<RefinedPose> refineAll(const Model& model,
                                    const std::vector<Eigen::Isometry3d>& starts,
                                    const VerificationSet& set,
                                    const PipelineConfig& config,
-                                   bool facing = false) {
+                                   bool facing = false,
+                                   double cutoff_scale = 1.0) {
   std::vector<RefinedPose> refined(starts.size());
   const auto count = static_cast<long>(starts.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (long i = 0; i < count; ++i) {
     const auto u = static_cast<std::size_t>(i);
-    refined[u] = refineQuickly(model, starts[u], set, config, facing);
+    refined[u] = refineQuickly(model, starts[u], set, config, facing, cutoff_scale);
   }
   return refined;
 }
@@ -242,27 +251,31 @@ RefinedHypotheses refineHypotheses(const Model& model,
 // The starts a pose that leaves some of the scan off the CAD is retried from (registerScan):
 // probes along the two motions the fit constrains least, two and four cells either way. A
 // prismatic view slides along its axis without leaving the surface, so ICP stays where the
-// triplet put it.
-std::vector<Eigen::Isometry3d> probeStarts(const Model& model,
-                                           const VerificationSet& set,
-                                           const Eigen::Isometry3d& pose,
-                                           double truncation) {
-  std::vector<Eigen::Isometry3d> starts;
+// triplet put it. Far along the weakest motion too: ICP from within four cells returns to where
+// the triplet put the pose, and a view of a bend can lie tens of degrees along it.
+struct ProbeStarts {
+  std::vector<Eigen::Isometry3d> near;
+  std::vector<Eigen::Isometry3d> far;  // refined with a wider cut-off (kFarProbeCutoffScale)
+};
+
+ProbeStarts probeStarts(const Model& model,
+                        const VerificationSet& set,
+                        const Eigen::Isometry3d& pose,
+                        double truncation) {
+  ProbeStarts starts;
   const std::vector<WeakMotion> motions =
       weakestMotions(model.query(), set.points, pose, truncation, kProbedMotions);
   for (const WeakMotion& motion : motions) {
     for (const double cells : kProbeCells) {
       for (const double sign : {-1.0, 1.0}) {
-        starts.push_back(motion.by(sign * cells * model.cellSize()) * pose);
+        starts.near.push_back(motion.by(sign * cells * model.cellSize()) * pose);
       }
     }
   }
-  // Far along the weakest motion too: ICP from within four cells returns to where the triplet put
-  // the pose, and a view of a bend can lie tens of degrees along it.
   if (!motions.empty()) {
     for (const double reach : kFarProbeReaches) {
       for (const double sign : {-1.0, 1.0}) {
-        starts.push_back(motions.front().by(sign * reach * model.bounds().diagonal()) * pose);
+        starts.far.push_back(motions.front().by(sign * reach * model.bounds().diagonal()) * pose);
       }
     }
   }
@@ -297,12 +310,12 @@ std::vector<Eigen::Isometry3d> turnStarts(const Model& model,
 // itself: a turned start lands within a few cells of a confusion, and on a sheet part ICP cannot
 // close that gap where the walls it should meet are farther than its cut-off (a hat channel
 // turned about an axis its unequal flanges move off the centroid).
-std::vector<Eigen::Isometry3d> probesAroundRivals(const Model& model,
-                                                  const VerificationSet& set,
-                                                  const std::vector<RefinedPose>& retried,
-                                                  const Eigen::Isometry3d& pose,
-                                                  const Eigen::Vector3d& reference,
-                                                  double truncation) {
+ProbeStarts probesAroundRivals(const Model& model,
+                               const VerificationSet& set,
+                               const std::vector<RefinedPose>& retried,
+                               const Eigen::Isometry3d& pose,
+                               const Eigen::Vector3d& reference,
+                               double truncation) {
   std::vector<const RefinedPose*> rivals;
   for (const RefinedPose& candidate : retried) {
     if (candidate.score > 0.0 &&
@@ -317,11 +330,11 @@ std::vector<Eigen::Isometry3d> probesAroundRivals(const Model& model,
     return a->score > b->score;
   });
   rivals.resize(std::min<std::size_t>(rivals.size(), kProbedRivals));
-  std::vector<Eigen::Isometry3d> starts;
+  ProbeStarts starts;
   for (const RefinedPose* rival : rivals) {
-    const std::vector<Eigen::Isometry3d> probes =
-        probeStarts(model, set, rival->T_cad_scan, truncation);
-    starts.insert(starts.end(), probes.begin(), probes.end());
+    const ProbeStarts probes = probeStarts(model, set, rival->T_cad_scan, truncation);
+    starts.near.insert(starts.near.end(), probes.near.begin(), probes.near.end());
+    starts.far.insert(starts.far.end(), probes.far.begin(), probes.far.end());
   }
   return starts;
 }
@@ -528,8 +541,8 @@ void registerScan(const Model& model,
   // fully as the pose, replaces it; one the scan cannot tell from it becomes a contender, so that
   // the verification below says ambiguous instead of picking one.
   if (icp.usable() && surface_share < kProbeBelowSurface) {
-    std::vector<Eigen::Isometry3d> starts =
-        probeStarts(model, set, icp.T_cad_scan, coarse_truncation);
+    const ProbeStarts probes = probeStarts(model, set, icp.T_cad_scan, coarse_truncation);
+    std::vector<Eigen::Isometry3d> starts = probes.near;
     const bool turn = surface_share < kRetryBelowSurface;
     if (turn) {
       const std::vector<Eigen::Isometry3d> turned = turnStarts(model, scan.graph, icp.T_cad_scan);
@@ -542,14 +555,17 @@ void registerScan(const Model& model,
       starts.insert(starts.end(), placed.begin(), placed.end());
     }
     std::vector<RefinedPose> retried = refineAll(model, starts, set, config, turn);
+    const std::vector<RefinedPose> far =
+        refineAll(model, probes.far, set, config, turn, kFarProbeCutoffScale);
+    retried.insert(retried.end(), far.begin(), far.end());
     if (turn) {
-      const std::vector<RefinedPose> probed = refineAll(
-          model,
-          probesAroundRivals(model, set, retried, icp.T_cad_scan, reference, coarse_truncation),
-          set,
-          config,
-          true);
-      retried.insert(retried.end(), probed.begin(), probed.end());
+      const ProbeStarts around =
+          probesAroundRivals(model, set, retried, icp.T_cad_scan, reference, coarse_truncation);
+      for (const auto& [group, scale] :
+           {std::pair{&around.near, 1.0}, std::pair{&around.far, kFarProbeCutoffScale}}) {
+        const std::vector<RefinedPose> probed = refineAll(model, *group, set, config, true, scale);
+        retried.insert(retried.end(), probed.begin(), probed.end());
+      }
     } else {
       std::vector<Eigen::Isometry3d> wall_turns;
       for (const Eigen::Isometry3d& wall_turn : model.normalFrameTurns()) {
