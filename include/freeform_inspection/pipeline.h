@@ -38,6 +38,12 @@ struct VerdictConfig {
   double min_in_tolerance_fraction = 0.0;
   /// NOT_EVALUATED when the scan covers less of the CAD surface than this (0 = any view).
   double min_coverage = 0.0;
+  /// [m] Expanded uncertainty U of the measured deviations (scanner, fixture and registration
+  /// together, as the quality engineer states it). 0: the tolerance band decides alone (simple
+  /// acceptance). Above 0, the decision rule of ISO 14253-1: PASS only where conformance is
+  /// proven (inside the band narrowed by U on both sides), FAIL only where nonconformance is
+  /// (outside the band widened by U), NOT_EVALUATED between them (ConformanceZones).
+  double measurement_uncertainty = 0.0;
 };
 
 /// Configuration of the whole pipeline, nested like config/default.yaml.
@@ -82,6 +88,26 @@ struct InspectionCounts {
   std::size_t correspondences = 0;  ///< correspondences kept after the triangle check
 };
 
+/// The zones of the ISO 14253-1 decision rule and what the deviation map shows in each; filled
+/// when verdict.measurement_uncertainty U is above 0 and the deviation was measured.
+struct ConformanceZones {
+  double measurement_uncertainty = 0.0;  ///< [m] U; 0 = not applied
+  /// [m] Conformance is proven inside [acceptance_lower, acceptance_upper] (the band narrowed by
+  /// U), empty (lower > upper) when U is half the band or more.
+  double acceptance_lower = 0.0;
+  double acceptance_upper = 0.0;
+  /// [m] Nonconformance is proven outside [rejection_lower, rejection_upper] (the band widened).
+  double rejection_lower = 0.0;
+  double rejection_upper = 0.0;
+  /// Defect regions (defects.h, the same rules) outside the acceptance zone, and outside the
+  /// rejection limits.
+  std::size_t regions_outside_acceptance = 0;
+  std::size_t regions_beyond_rejection = 0;
+  /// Share of the evaluated points inside the acceptance zone, and inside the rejection limits.
+  double inside_acceptance_fraction = 0.0;
+  double inside_rejection_fraction = 0.0;
+};
+
 /// Wall time of one stage.
 struct StageTiming {
   std::string stage;     ///< stage name
@@ -114,8 +140,9 @@ struct InspectionResult {
   PoseUncertainty pose_uncertainty;
   DeviationStatistics deviation;      ///< empty unless the registration is ok or ambiguous
   std::vector<DefectRegion> defects;  ///< largest |peak| first
-  DeviationMap deviation_map;         ///< per scan point, CAD frame (empty when failed)
-  Triangles scan_faces;               ///< the cleaned scan's triangles (indices into the map)
+  ConformanceZones conformance;  ///< the guard bands' decision (verdict.measurement_uncertainty)
+  DeviationMap deviation_map;    ///< per scan point, CAD frame (empty when failed)
+  Triangles scan_faces;          ///< the cleaned scan's triangles (indices into the map)
   InspectionCounts counts;
   std::vector<StageTiming> timings;   ///< per stage, last entry "total"
   std::vector<std::string> warnings;  ///< non-fatal findings for the caller to log

@@ -71,6 +71,7 @@ std::vector<ConfigField> configFields(PipelineConfig& config) {
       {"defects/neighbour_spacings", &config.defects.neighbour_spacings},
       {"verdict/min_in_tolerance_fraction", &config.verdict.min_in_tolerance_fraction},
       {"verdict/min_coverage", &config.verdict.min_coverage},
+      {"verdict/measurement_uncertainty", &config.verdict.measurement_uncertainty},
   };
 }
 

@@ -29,6 +29,95 @@ std::string describeDefect(const DefectRegion& defect) {
   return text;
 }
 
+// The regions and shares of the deviation map in the zones of ISO 14253-1's decision rule:
+// the band narrowed by U (acceptance) and widened by U (rejection beyond it). The same region
+// rules as the defects, so a zone's verdict and the defect list agree where U is 0.
+ConformanceZones conformanceZones(const DeviationMap& map,
+                                  const Triangles& faces,
+                                  const PipelineConfig& config) {
+  ConformanceZones zones;
+  const double u = config.verdict.measurement_uncertainty;
+  if (!(u > 0.0)) {
+    return zones;
+  }
+  zones.measurement_uncertainty = u;
+  const ToleranceConfig rejection{config.tolerance.upper + u, config.tolerance.lower - u};
+  zones.rejection_lower = rejection.lower;
+  zones.rejection_upper = rejection.upper;
+  zones.regions_beyond_rejection =
+      findDefects(map.points, faces, map.deviation, rejection, config.defects).regions.size();
+  zones.inside_rejection_fraction =
+      summarizeDeviation(map.deviation, rejection, 1).in_tolerance_fraction;
+  zones.acceptance_lower = config.tolerance.lower + u;
+  zones.acceptance_upper = config.tolerance.upper - u;
+  // An empty acceptance zone proves nothing conforms; judge() says so.
+  if (zones.acceptance_lower < zones.acceptance_upper) {
+    const ToleranceConfig acceptance{zones.acceptance_upper, zones.acceptance_lower};
+    zones.regions_outside_acceptance =
+        findDefects(map.points, faces, map.deviation, acceptance, config.defects).regions.size();
+    zones.inside_acceptance_fraction =
+        summarizeDeviation(map.deviation, acceptance, 1).in_tolerance_fraction;
+  }
+  return zones;
+}
+
+// judge() with the guard bands of ISO 14253-1 (verdict.measurement_uncertainty > 0).
+void judgeWithUncertainty(const PipelineConfig& config, InspectionResult* result) {
+  const ConformanceZones& zones = result->conformance;
+  const double min_inside = config.verdict.min_in_tolerance_fraction;
+  const std::string u =
+      "the measurement uncertainty U " + formatLength(zones.measurement_uncertainty);
+  const std::string rejection =
+      "[" + formatLength(zones.rejection_lower) + ", " + formatLength(zones.rejection_upper) + "]";
+  const std::string acceptance = "[" + formatLength(zones.acceptance_lower) + ", " +
+                                 formatLength(zones.acceptance_upper) + "]";
+  if (zones.regions_beyond_rejection > 0) {
+    result->verdict = Verdict::kFail;
+    result->verdict_reason =
+        std::to_string(zones.regions_beyond_rejection) +
+        " region(s) outside the tolerance band widened by " + u + " " + rejection +
+        " (nonconformance proven, ISO 14253-1); largest: " +
+        (result->defects.empty() ? std::string("-") : describeDefect(result->defects.front()));
+    return;
+  }
+  if (zones.inside_rejection_fraction < min_inside) {
+    result->verdict = Verdict::kFail;
+    result->verdict_reason = "only " + std::to_string(zones.inside_rejection_fraction) +
+                             " of the points lie inside the tolerance band widened by " + u + " " +
+                             rejection + " (verdict.min_in_tolerance_fraction " +
+                             std::to_string(min_inside) + "; nonconformance proven)";
+    return;
+  }
+  if (!(zones.acceptance_lower < zones.acceptance_upper)) {
+    result->verdict_reason = "not evaluated: " + u +
+                             " is half the tolerance band or more, so no part can be proven to "
+                             "conform (ISO 14253-1); none lies beyond " +
+                             rejection;
+    return;
+  }
+  if (zones.regions_outside_acceptance == 0 && zones.inside_acceptance_fraction >= min_inside) {
+    result->verdict = Verdict::kPass;
+    result->verdict_reason = "no region of " + std::to_string(config.defects.min_points) +
+                             " or more connected points outside the acceptance zone " + acceptance +
+                             " (the tolerance band narrowed by " + u +
+                             ": conformance proven, ISO 14253-1); " +
+                             std::to_string(zones.inside_acceptance_fraction) + " of " +
+                             std::to_string(result->deviation.evaluated) + " points inside it";
+    return;
+  }
+  result->verdict_reason =
+      "not evaluated: neither conformance nor nonconformance is proven (ISO 14253-1): " +
+      std::to_string(zones.regions_outside_acceptance) +
+      " region(s) lie outside the acceptance zone " + acceptance + ", none outside " + rejection +
+      " (the tolerance band narrowed and widened by " + u + ")";
+  if (min_inside > 0.0) {
+    result->verdict_reason += "; " + std::to_string(zones.inside_acceptance_fraction) +
+                              " of the points inside the acceptance zone (" +
+                              "verdict.min_in_tolerance_fraction " + std::to_string(min_inside) +
+                              ")";
+  }
+}
+
 }  // namespace
 
 std::string formatLength(double metres) {
@@ -70,6 +159,7 @@ void measurePart(const Model& model,
       findDefects(map.points, scan.faces, map.deviation, config.tolerance, config.defects);
   result->defects = std::move(defects.regions);
   map.defect = std::move(defects.point_region);
+  result->conformance = conformanceZones(map, scan.faces, config);
   result->scan_faces = scan.faces;
   // A band narrower than the residual noise of the fit flags scattered points, not the part.
   const double band = std::min(config.tolerance.upper, -config.tolerance.lower);
@@ -109,6 +199,10 @@ void judge(const PipelineConfig& config, InspectionResult* result) {
     result->verdict_reason = "not evaluated: the scan covers " + std::to_string(stats.coverage) +
                              " of the CAD surface (" + "verdict.min_coverage " +
                              std::to_string(config.verdict.min_coverage) + ")";
+    return;
+  }
+  if (result->conformance.measurement_uncertainty > 0.0) {
+    judgeWithUncertainty(config, result);
     return;
   }
   if (!result->defects.empty()) {

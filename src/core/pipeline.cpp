@@ -1010,6 +1010,9 @@ std::vector<std::string> validate(const PipelineConfig& config) {
   if (!(verdict.min_coverage >= 0.0 && verdict.min_coverage <= 1.0)) {
     errors.push_back("verdict.min_coverage must be in [0, 1]");
   }
+  if (!(verdict.measurement_uncertainty >= 0.0 && std::isfinite(verdict.measurement_uncertainty))) {
+    errors.push_back("verdict.measurement_uncertainty must be finite and >= 0 [m]");
+  }
   return errors;
 }
 

@@ -104,6 +104,21 @@ nlohmann::ordered_json poseUncertaintyJson(const PoseUncertainty& u) {
           {"covariance", rows}};
 }
 
+// The guard bands of ISO 14253-1's decision rule; null when no measurement uncertainty is set.
+nlohmann::ordered_json conformanceJson(const ConformanceZones& z) {
+  if (!(z.measurement_uncertainty > 0.0)) {
+    return nullptr;
+  }
+  return {{"rule", "ISO 14253-1"},
+          {"measurement_uncertainty", z.measurement_uncertainty},
+          {"acceptance_zone", {z.acceptance_lower, z.acceptance_upper}},
+          {"rejection_limits", {z.rejection_lower, z.rejection_upper}},
+          {"regions_outside_acceptance", z.regions_outside_acceptance},
+          {"regions_beyond_rejection", z.regions_beyond_rejection},
+          {"inside_acceptance_fraction", z.inside_acceptance_fraction},
+          {"inside_rejection_fraction", z.inside_rejection_fraction}};
+}
+
 nlohmann::ordered_json countsJson(const InspectionCounts& c) {
   return {{"scan_points", c.scan_points},
           {"non_finite", c.non_finite},
@@ -141,6 +156,7 @@ nlohmann::ordered_json toJson(const InspectionResult& result) {
   json["verdict_reason"] = result.verdict_reason;
   json["deviation"] = deviationJson(result.deviation);
   json["defects"] = defectsJson(result.defects);
+  json["conformance"] = conformanceJson(result.conformance);
   json["counts"] = countsJson(result.counts);
   json["timings_s"] = nlohmann::ordered_json::object();
   for (const auto& timing : result.timings) {

@@ -277,6 +277,41 @@ TEST(Cli, UnregisteredScanSkipsTheDeviationFileButWritesTheReport) {
   EXPECT_NE(html.find("No deviation map"), std::string::npos);
 }
 
+// verdict/measurement_uncertainty from --config: the report carries the zones of ISO 14253-1's
+// rule (the band ±0.2 mm narrowed and widened by U = 0.05 mm). The coarse CAD's chordal error
+// stands the sample scan up to ~0.6 mm out of it (CoarseCadShowsItsChordalErrorAsExcessMaterial),
+// beyond the widened band too: nonconformance proven. A negative U is refused, naming the key.
+TEST(Cli, GuardBandsFromTheConfigAreInTheReport) {
+  const std::string config = temp("guard.yaml");
+  std::ofstream(config) << "verdict:\n  measurement_uncertainty: 0.00005\n";
+  const CliRun run = runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan +
+                            " --tolerance 0.0002 --config " + config);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  ASSERT_EQ(json["status"], "ok") << json["message"];
+  const auto& zones = json["conformance"];
+  ASSERT_TRUE(zones.is_object()) << zones;
+  EXPECT_DOUBLE_EQ(zones["measurement_uncertainty"].get<double>(), 0.00005);
+  EXPECT_NEAR(zones["acceptance_zone"][0].get<double>(), -0.00015, 1e-12);
+  EXPECT_NEAR(zones["acceptance_zone"][1].get<double>(), 0.00015, 1e-12);
+  EXPECT_NEAR(zones["rejection_limits"][1].get<double>(), 0.00025, 1e-12);
+  EXPECT_GE(zones["regions_beyond_rejection"].get<int>(), 1);
+  EXPECT_GE(zones["regions_outside_acceptance"].get<int>(),
+            zones["regions_beyond_rejection"].get<int>());
+  EXPECT_EQ(json["verdict"], "FAIL") << json["verdict_reason"];
+  EXPECT_NE(json["verdict_reason"].get<std::string>().find("nonconformance proven"),
+            std::string::npos);
+
+  const CliRun plain = runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_TRUE(nlohmann::json::parse(plain.out)["conformance"].is_null());
+
+  std::ofstream(config) << "verdict:\n  measurement_uncertainty: -0.00005\n";
+  const CliRun refused = runCli("--cad " + kBlade + " --scan " + kScan + " --config " + config);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("measurement_uncertainty"), std::string::npos) << refused.err;
+}
+
 TEST(Cli, InvalidConfigExitsTwoNamingTheKey) {
   const std::string config = temp("bad.yaml");
   std::ofstream(config) << "tolerance:\n  uper: 0.001\n";

@@ -263,6 +263,63 @@ TEST(Inspection, ScanDescriptorsMustBeComputedLikeTheModels) {
   EXPECT_EQ(registered.registration, RegistrationStatus::kOk) << registered.status.message;
 }
 
+// ISO 14253-1's decision rule with a measurement uncertainty U = 5 σ on a band of ±20 σ: PASS
+// only inside ±15 σ (conformance proven), FAIL only beyond ±25 σ (nonconformance proven). A
+// dent 22 σ deep fails on the band alone but proves nothing with U; one 32 σ deep fails either
+// way; a clean part passes either way. U of half the band or more proves no part conforms.
+TEST(Inspection, GuardBandsOfTheMeasurementUncertaintyDecideOnlyWhatTheyProve) {
+  const double sigma = 0.0005 * diagonal();
+  PipelineConfig simple = withBand(20.0 * sigma);
+  PipelineConfig guarded = simple;
+  guarded.verdict.measurement_uncertainty = 5.0 * sigma;
+  const SyntheticScan clean = makeCase(3, 0.0005, false);
+  struct Case {
+    const char* name;
+    double depth;  // [σ], 0: clean
+    Verdict simple;
+    Verdict guarded;
+  };
+  for (const Case& c : {Case{"clean", 0.0, Verdict::kPass, Verdict::kPass},
+                        Case{"dent of 22 sigma", -22.0, Verdict::kFail, Verdict::kNotEvaluated},
+                        Case{"dent of 32 sigma", -32.0, Verdict::kFail, Verdict::kFail}}) {
+    SCOPED_TRACE(c.name);
+    SyntheticScan scan = clean;
+    if (c.depth < 0.0) {
+      pressDent(&scan, 0.05, c.depth * sigma);
+    }
+    const InspectionResult plain = inspect(blade(), scan.scan, simple);
+    const InspectionResult result = inspect(blade(), scan.scan, guarded);
+    ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+    const ConformanceZones& zones = result.conformance;
+    std::printf(
+        "  %s: %s without U, %s with U (%zu regions outside the acceptance zone, %zu "
+        "beyond the rejection limits): %s\n",
+        c.name,
+        toString(plain.verdict),
+        toString(result.verdict),
+        zones.regions_outside_acceptance,
+        zones.regions_beyond_rejection,
+        result.verdict_reason.c_str());
+    EXPECT_EQ(plain.verdict, c.simple) << plain.verdict_reason;
+    EXPECT_EQ(plain.conformance.measurement_uncertainty, 0.0);
+    EXPECT_EQ(result.verdict, c.guarded) << result.verdict_reason;
+    EXPECT_NEAR(zones.acceptance_upper, 15.0 * sigma, 1e-12);
+    EXPECT_NEAR(zones.rejection_lower, -25.0 * sigma, 1e-12);
+    EXPECT_NE(result.verdict_reason.find("ISO 14253-1"), std::string::npos);
+    // The defect list is the band's, whatever U.
+    EXPECT_EQ(result.defects.size(), plain.defects.size());
+  }
+
+  guarded.verdict.measurement_uncertainty = 20.0 * sigma;
+  const InspectionResult unprovable = inspect(blade(), clean.scan, guarded);
+  EXPECT_EQ(unprovable.verdict, Verdict::kNotEvaluated);
+  EXPECT_NE(unprovable.verdict_reason.find("half the tolerance band"), std::string::npos)
+      << unprovable.verdict_reason;
+
+  guarded.verdict.measurement_uncertainty = -sigma;
+  EXPECT_FALSE(validate(guarded).empty());
+}
+
 TEST(Inspection, ABandNarrowerThanTheNoiseIsFlagged) {
   const SyntheticScan truth = makeCase(7, 0.005, false);
   const InspectionResult result = inspect(blade(), truth.scan, withBand(0.001 * diagonal()));
