@@ -132,6 +132,31 @@ std::string statisticsSection(const DeviationStatistics& s, const ToleranceConfi
          "</table>\n" + histogramSvg(s, tolerance);
 }
 
+// The decision rule's zones (ISO 14253-1) when a measurement uncertainty was stated.
+std::string conformanceSection(const ConformanceZones& z) {
+  if (!(z.measurement_uncertainty > 0.0)) {
+    return "";
+  }
+  const std::string acceptance =
+      z.acceptance_lower < z.acceptance_upper
+          ? millimetres(z.acceptance_lower) + " to " + millimetres(z.acceptance_upper)
+          : std::string("empty (U is half the band or more)");
+  return "<h2>Decision rule</h2>\n<p>ISO 14253-1 with the measurement uncertainty U = " +
+         millimetres(z.measurement_uncertainty) +
+         ": PASS only where conformance is proven, FAIL only where nonconformance is.</p>\n"
+         "<table class=\"statistics\">\n" +
+         tableRow("Acceptance zone (band narrowed by U)", {acceptance}) +
+         tableRow("Rejection limits (band widened by U)",
+                  {millimetres(z.rejection_lower) + " to " + millimetres(z.rejection_upper)}) +
+         tableRow("Regions outside the acceptance zone / beyond the rejection limits",
+                  {std::to_string(z.regions_outside_acceptance) + " / " +
+                   std::to_string(z.regions_beyond_rejection)}) +
+         tableRow("Points inside the acceptance zone / the rejection limits",
+                  {percent(z.inside_acceptance_fraction) + " / " +
+                   percent(z.inside_rejection_fraction)}) +
+         "</table>\n";
+}
+
 std::string defectRow(std::size_t id, const DefectRegion& d) {
   const std::string centroid = number(d.centroid.x() * 1e3, 2) + ", " +
                                number(d.centroid.y() * 1e3, 2) + ", " +
@@ -196,9 +221,10 @@ std::string renderHtmlReport(const InspectionResult& result,
          kStyle + "</head>\n<body>\n<h1>Inspection report: " + escapeHtml(part) + "</h1>\n" +
          verdictBanner(result) + provenanceSection(provenance, config_hash) +
          statisticsSection(result.deviation, config.tolerance) +
-         mapSection(result, config.tolerance) + defectsSection(result.defects) +
-         registrationSection(result) + warningsSection(result.warnings) +
-         configSection(config, config_hash) + "</body>\n</html>\n";
+         conformanceSection(result.conformance) + mapSection(result, config.tolerance) +
+         defectsSection(result.defects) + registrationSection(result) +
+         warningsSection(result.warnings) + configSection(config, config_hash) +
+         "</body>\n</html>\n";
 }
 
 Status saveHtmlReport(const std::string& path,

@@ -375,6 +375,39 @@ TEST(HtmlReport, ShowsVerdictNumbersHistogramAndPictures) {
   EXPECT_EQ(html.find("src=\"http"), std::string::npos);
 }
 
+// With a measurement uncertainty the report shows the decision rule's zones; without, nothing.
+TEST(HtmlReport, ShowsTheGuardBandsWhenAnUncertaintyIsStated) {
+  fi::PipelineConfig config;
+  config.tolerance = tolerance02();
+  fi::InspectionResult result = failedPart();
+  EXPECT_EQ(fi::renderHtmlReport(result, config, provenance()).find("Decision rule"),
+            std::string::npos);
+  fi::ConformanceZones& zones = result.conformance;
+  zones.measurement_uncertainty = 0.00005;
+  zones.acceptance_lower = -0.00015;
+  zones.acceptance_upper = 0.00015;
+  zones.rejection_lower = -0.00025;
+  zones.rejection_upper = 0.00025;
+  zones.regions_outside_acceptance = 3;
+  zones.regions_beyond_rejection = 2;
+  zones.inside_acceptance_fraction = 0.951;
+  zones.inside_rejection_fraction = 0.987;
+  const std::string html = fi::renderHtmlReport(result, config, provenance());
+  for (const char* shown : {"Decision rule",
+                            "ISO 14253-1",
+                            "U = 0.0500 mm",
+                            "-0.1500 mm to 0.1500 mm",
+                            "-0.2500 mm to 0.2500 mm",
+                            "3 / 2",
+                            "95.1 % / 98.7 %"}) {
+    EXPECT_NE(html.find(shown), std::string::npos) << shown;
+  }
+  zones.acceptance_lower = 0.0001;
+  zones.acceptance_upper = -0.0001;
+  EXPECT_NE(fi::renderHtmlReport(result, config, provenance()).find("empty (U is half the band"),
+            std::string::npos);
+}
+
 TEST(HtmlReport, FailedRegistrationReportsWhyWithoutPictures) {
   fi::InspectionResult result;
   result.status = fi::Status::failure(fi::StatusCode::kRegistrationFailed, "no pose explains it");
