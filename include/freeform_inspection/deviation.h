@@ -102,6 +102,10 @@ std::vector<float> shapeDeviation(const DescriptorResult& scan,
 /// `distance` [m], raised to 2.5 scan spacings for a scan sparser than that.
 double surfaceCoverage(const Model& model, const Points& points_cad, double distance);
 
+/// @brief Share of the finite entries of `deviation` inside [tolerance.lower, tolerance.upper],
+/// 0 when none is finite: summarizeDeviation()'s in_tolerance_fraction, without its sort.
+double inToleranceFraction(const std::vector<float>& deviation, const ToleranceConfig& tolerance);
+
 /// @brief Statistics of `deviation` (NaN entries are unmatched) against the tolerance band.
 DeviationStatistics summarizeDeviation(const std::vector<float>& deviation,
                                        const ToleranceConfig& tolerance,

@@ -9,6 +9,7 @@
 
 #include <parallel/algorithm>
 
+#include "freeform_inspection/deviation_colours.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/point_index.h"
 #include "freeform_inspection/surface_graph.h"
@@ -207,6 +208,18 @@ double surfaceCoverage(const Model& model, const Points& points_cad, double dist
   return total > 0.0 ? covered / total : 0.0;
 }
 
+double inToleranceFraction(const std::vector<float>& deviation, const ToleranceConfig& tolerance) {
+  std::size_t finite = 0;
+  std::size_t inside = 0;
+  for (const float v : deviation) {
+    if (std::isfinite(v)) {
+      ++finite;
+      inside += inTolerance(v, tolerance) ? 1 : 0;
+    }
+  }
+  return finite > 0 ? static_cast<double>(inside) / static_cast<double>(finite) : 0.0;
+}
+
 DeviationStatistics summarizeDeviation(const std::vector<float>& deviation,
                                        const ToleranceConfig& tolerance,
                                        int histogram_bins) {
@@ -219,11 +232,9 @@ DeviationStatistics summarizeDeviation(const std::vector<float>& deviation,
   }
   double sum = 0.0;
   double sum2 = 0.0;
-  std::size_t inside = 0;
   for (const double d : sorted) {
     sum += d;
     sum2 += d * d;
-    inside += d >= tolerance.lower && d <= tolerance.upper ? 1 : 0;
   }
   const auto n = static_cast<double>(sorted.size());
   stats.mean = sum / n;
@@ -234,7 +245,7 @@ DeviationStatistics summarizeDeviation(const std::vector<float>& deviation,
   stats.p5 = quantile(sorted, 0.05);
   stats.p50 = quantile(sorted, 0.50);
   stats.p95 = quantile(sorted, 0.95);
-  stats.in_tolerance_fraction = static_cast<double>(inside) / n;
+  stats.in_tolerance_fraction = inToleranceFraction(deviation, tolerance);
   // Symmetric bins wide enough for twice the band and the bulk of the data; the outer bins
   // take the tails so every point is counted.
   const double band = std::max(tolerance.upper, -tolerance.lower);

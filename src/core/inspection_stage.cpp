@@ -46,8 +46,7 @@ ConformanceZones conformanceZones(const DeviationMap& map,
   zones.rejection_upper = rejection.upper;
   zones.regions_beyond_rejection =
       findDefects(map.points, faces, map.deviation, rejection, config.defects).regions.size();
-  zones.inside_rejection_fraction =
-      summarizeDeviation(map.deviation, rejection, 1).in_tolerance_fraction;
+  zones.inside_rejection_fraction = inToleranceFraction(map.deviation, rejection);
   zones.acceptance_lower = config.tolerance.lower + u;
   zones.acceptance_upper = config.tolerance.upper - u;
   // An empty acceptance zone proves nothing conforms; judge() says so.
@@ -55,8 +54,7 @@ ConformanceZones conformanceZones(const DeviationMap& map,
     const ToleranceConfig acceptance{zones.acceptance_upper, zones.acceptance_lower};
     zones.regions_outside_acceptance =
         findDefects(map.points, faces, map.deviation, acceptance, config.defects).regions.size();
-    zones.inside_acceptance_fraction =
-        summarizeDeviation(map.deviation, acceptance, 1).in_tolerance_fraction;
+    zones.inside_acceptance_fraction = inToleranceFraction(map.deviation, acceptance);
   }
   return zones;
 }
