@@ -8,12 +8,13 @@
 // in its own frame, registered from no initial guess. Success is issue 4's rule: rotation error
 // < 2° and scan-centroid error < 1 % of the "CAD" diagonal, with status "ok".
 //
-//   dragon_eval DIR [--min-surface S] [--step N]
+//   dragon_eval DIR [--min-surface S] [--step N] [--config YAML] [--only NAME]
 //
 // DIR holds dragonStandRight.conf and the dragonStandRight_<deg>.ply files. --min-surface sets
 // registration.min_surface_on_cad: two views share only 55–94 % of their surface, so the default
 // 0.8 refuses the pairs that overlap less (that is what it is for); --step N pairs view i with
-// view i + N (default 1, 24°).
+// view i + N (default 1, 24°); --config reads a pipeline YAML (config/default.yaml's keys) before
+// --min-surface applies; --only runs the pairs whose CAD view's file name contains NAME.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -23,6 +24,7 @@
 #include "pose_error.h"
 #include <Eigen/Geometry>
 
+#include "freeform_inspection/config_yaml.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
 
@@ -30,22 +32,38 @@ namespace fi = freeform_inspection;
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: dragon_eval DIR [--min-surface S] [--step N]\n");
+    std::fprintf(stderr,
+                 "usage: dragon_eval DIR [--min-surface S] [--step N] [--config YAML] "
+                 "[--only NAME]\n");
     return 2;
   }
   const std::string dir = argv[1];
   fi::PipelineConfig config;
   int step = 1;
+  double min_surface = -1.0;
+  std::string only;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     if (flag == "--min-surface") {
-      config.registration.min_surface_on_cad = std::atof(argv[i + 1]);
+      min_surface = std::atof(argv[i + 1]);
     } else if (flag == "--step") {
       step = std::atoi(argv[i + 1]);
+    } else if (flag == "--only") {
+      only = argv[i + 1];
+    } else if (flag == "--config") {
+      const fi::ConfigLoadResult read = fi::loadPipelineConfigFile(argv[i + 1]);
+      if (!read.status.ok()) {
+        std::fprintf(stderr, "dragon_eval: %s\n", read.status.message.c_str());
+        return 2;
+      }
+      config = read.config;
     } else {
       std::fprintf(stderr, "dragon_eval: unknown option %s\n", flag.c_str());
       return 2;
     }
+  }
+  if (min_surface >= 0.0) {
+    config.registration.min_surface_on_cad = min_surface;
   }
   std::vector<fi::bench::DragonPair> pairs;
   std::string error;
@@ -57,6 +75,9 @@ int main(int argc, char** argv) {
   int ok = 0;
   int wrong_ok = 0;
   for (const fi::bench::DragonPair& pair : pairs) {
+    if (!only.empty() && pair.cad_view.find(only) == std::string::npos) {
+      continue;
+    }
     const fi::Model model(pair.cad, pair.cad_view, pair.cad_view);
     fi::Scan scan;
     scan.points = pair.scan;

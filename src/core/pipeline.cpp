@@ -126,6 +126,11 @@ constexpr double kLeanSigmas = 2.0;
 // dismissed the truth (docs/benchmarks.md, session 31).
 constexpr double kLeanShare = 0.01;
 
+// The second search (registerWidening) accepts features whose r_max ball covers this share of
+// the first search's min_ball_area: a holed or narrow view has few whole balls (the dragon's
+// view 72 against view 48: 4 features, no congruent triplet; with cut balls 18 and registered).
+constexpr double kRetryBallShare = 0.5;
+
 // A refined candidate pose and how much of the scan it explains.
 struct RefinedPose {
   Eigen::Isometry3d T_cad_scan;
@@ -809,10 +814,12 @@ void addTimings(const std::vector<StageTiming>& extra, std::vector<StageTiming>*
   }
 }
 
-// registerScan(), and when no pose explained the scan although candidates were found, once more
-// with `retry_candidates` per feature: on a partial or noisy scan a feature's true place can rank
-// below the first max_candidates in descriptor space (a partial view's wide scales read flatter
-// than the CAD's there). Scans that register at the first attempt are not touched.
+// registerScan(), and when no pose explained the scan, once more with `retry_candidates` per
+// feature and features whose r_max ball is cut down to half the usual share: on a partial or
+// noisy scan a feature's true place can rank below the first max_candidates in descriptor space
+// (a partial view's wide scales read flatter than the CAD's there), and a narrow or holed view
+// has too few whole balls to give a triplet its three true matches. Scans that register at the
+// first attempt are not touched.
 void registerWidening(const Model& model,
                       const Points& scan_points,
                       const DescriptorResult& scan,
@@ -824,13 +831,17 @@ void registerWidening(const Model& model,
   registerScan(model, scan_points, scan, oriented, config, progress, result);
   const int first = config.correspondence.max_candidates;
   const int wider = config.correspondence.retry_candidates;
+  // Too few features for candidates (a narrow view) is worth it too: cut balls may add some.
+  const bool worth_retrying =
+      result->counts.candidates > 0 ||
+      result->counts.features < static_cast<std::size_t>(config.features.min_features);
   if (result->registration != RegistrationStatus::kFailed ||
-      result->status.code != StatusCode::kRegistrationFailed || result->counts.candidates == 0 ||
-      wider <= first) {
+      result->status.code != StatusCode::kRegistrationFailed || !worth_retrying || wider <= first) {
     return;
   }
   PipelineConfig widened = config;
   widened.correspondence.max_candidates = wider;
+  widened.features.min_ball_area = kRetryBallShare * config.features.min_ball_area;
   InspectionResult retry = before;
   retry.timings.clear();
   registerScan(model, scan_points, scan, oriented, widened, progress, &retry);
@@ -840,16 +851,17 @@ void registerWidening(const Model& model,
   if (retry.registration == RegistrationStatus::kFailed) {
     addTimings(retry.timings, &result->timings);
     result->warnings.push_back("searched again with up to " + std::to_string(wider) +
-                               " CAD candidates per feature (correspondence.retry_candidates): "
-                               "no pose either");
+                               " CAD candidates per feature (correspondence.retry_candidates) "
+                               "and features whose ball the view cuts: no pose either");
     return;
   }
   std::vector<StageTiming> timings = result->timings;
   addTimings(retry.timings, &timings);
   retry.timings = std::move(timings);
   retry.warnings.push_back("registered with up to " + std::to_string(wider) +
-                           " CAD candidates per feature (correspondence.retry_candidates): with " +
-                           std::to_string(first) + " no pose explained the scan");
+                           " CAD candidates per feature (correspondence.retry_candidates) and "
+                           "features whose ball the view cuts: with " +
+                           std::to_string(first) + " and whole balls no pose explained the scan");
   *result = std::move(retry);
 }
 

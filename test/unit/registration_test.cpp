@@ -601,6 +601,62 @@ TEST(Registration, WiderCandidateSearchRegistersWhatTheFirstMissed) {
   EXPECT_EQ(stages.back(), "total");
 }
 
+// The scan without the bands across the CAD's x axis where (x / r_max) mod (keep + gap) ≥ keep:
+// a view with stripes of missing data (a shiny part, a scanner that drops fringes), whose
+// geodesic balls of radius r_max the gaps cut.
+SyntheticScan withBandsMissing(const SyntheticScan& scan, double r_max, double keep, double gap) {
+  SyntheticScan banded = scan;
+  banded.scan.points.clear();
+  banded.scan.normals.clear();
+  for (std::size_t i = 0; i < scan.scan.points.size(); ++i) {
+    const double x = (scan.T_cad_scan * scan.scan.points[i]).x() / r_max;
+    if (x - (keep + gap) * std::floor(x / (keep + gap)) < keep) {
+      banded.scan.points.push_back(scan.scan.points[i]);
+      banded.scan.normals.push_back(scan.scan.normals[i]);
+    }
+  }
+  return banded;
+}
+
+TEST(Registration, SecondSearchTakesFeaturesWhoseBallTheViewCuts) {
+  // 30k-point views at 0.1 % noise with bands missing: full views with bands 0.4 r_max wide kept
+  // and lost, partial ones 0.5 and 0.5. No r_max ball is whole, so the first search finds too
+  // few features for a congruent triplet (full views) or fewer than three (the partial one).
+  // The second search accepts balls cut down to half the usual share and must register them.
+  // These are the three of seeds 1-8 of each kind that failed before it did (with more
+  // candidates for the same features alone, kRetryBallShare = 1: checked by building so); the
+  // other thirteen registered either way.
+  const double r_max = blade().descriptors().radii.back();
+  PipelineConfig once;
+  once.correspondence.retry_candidates = 0;  // no second search
+  const struct {
+    std::uint64_t seed;
+    bool partial;
+    double band;  // × r_max, kept and lost alike
+  } views[] = {{1, false, 0.4}, {2, false, 0.4}, {2, true, 0.5}};
+  for (const auto& view : views) {
+    SCOPED_TRACE(std::string(view.partial ? "partial" : "full") + " view, seed " +
+                 std::to_string(view.seed));
+    SyntheticScanConfig config = caseConfig(view.seed, 0.001, view.partial, 0.0);
+    config.points = 30000;
+    const SyntheticScan truth =
+        withBandsMissing(makeCase(blade(), config), r_max, view.band, view.band);
+    const InspectionResult first = inspect(blade(), truth.scan, once);
+    ASSERT_EQ(first.registration, RegistrationStatus::kFailed);
+    EXPECT_EQ(first.status.code, StatusCode::kRegistrationFailed) << first.status.message;
+
+    const InspectionResult result = inspect(blade(), truth.scan, PipelineConfig());
+    ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+    const PoseError error = poseError(result, truth, blade().bounds().diagonal());
+    EXPECT_LT(error.rotation_deg, 0.5);
+    EXPECT_LT(error.centroid_ratio, 0.002);
+    EXPECT_GT(result.counts.features, first.counts.features);
+    EXPECT_TRUE(std::any_of(result.warnings.begin(), result.warnings.end(), [](const auto& w) {
+      return w.find("features whose ball the view cuts") != std::string::npos;
+    }));
+  }
+}
+
 TEST(Registration, CancelDuringTheWiderSearchIsReportedAsCancelled) {
   const SyntheticScan truth = makeCase(blade(), caseConfig(2, 0.005, false, 0.0));
   PipelineConfig widening;
