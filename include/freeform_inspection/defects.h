@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,10 +48,39 @@ struct DefectResult {
   std::vector<int> point_region;
 };
 
+/// The scan surface's connectivity as findDefects() reads it, kept for several bands judged on
+/// the same points (the guard bands of the verdict judge three): a cloud's kd-tree, median
+/// spacing and neighbour table are built once, on first need. Holds references to the points
+/// and faces, which must outlive it. Not thread-safe.
+class DefectNeighbourhood {
+ public:
+  /// @param points_cad scan points in the CAD frame.
+  /// @param faces the scan's triangles (its connectivity), or empty for a cloud.
+  DefectNeighbourhood(const Points& points_cad, const Triangles& faces);
+  ~DefectNeighbourhood();
+  DefectNeighbourhood(const DefectNeighbourhood&) = delete;
+  DefectNeighbourhood& operator=(const DefectNeighbourhood&) = delete;
+
+ private:
+  struct Impl;
+  friend DefectResult findDefects(DefectNeighbourhood& neighbourhood,
+                                  const std::vector<float>& deviation,
+                                  const ToleranceConfig& tolerance,
+                                  const DefectConfig& config);
+  std::unique_ptr<Impl> impl_;
+};
+
 /// @brief Clusters the out-of-tolerance points of a deviation map.
+/// @param deviation signed deviation per point of the neighbourhood [m], NaN for unmatched
+/// points (never defects).
+DefectResult findDefects(DefectNeighbourhood& neighbourhood,
+                         const std::vector<float>& deviation,
+                         const ToleranceConfig& tolerance,
+                         const DefectConfig& config);
+
+/// @brief findDefects() for one band: the neighbourhood built for this call alone.
 /// @param points_cad scan points in the CAD frame.
 /// @param faces the scan's triangles (its connectivity), or empty for a cloud.
-/// @param deviation signed deviation per point [m], NaN for unmatched points (never defects).
 DefectResult findDefects(const Points& points_cad,
                          const Triangles& faces,
                          const std::vector<float>& deviation,

@@ -88,6 +88,35 @@ std::vector<double> pointAreas(const Points& points,
 
 }  // namespace
 
+struct DefectNeighbourhood::Impl {
+  const Points& points;
+  const Triangles& faces;
+  std::unique_ptr<PointIndex> index;                // clouds, on first need
+  double spacing = 0.0;                             // median spacing, with the index
+  std::unique_ptr<internal::NeighbourTable> table;  // clouds, when much is out of tolerance
+
+  const PointIndex& cloudIndex() {
+    if (!index) {
+      index = std::make_unique<PointIndex>(points);
+      spacing = medianSpacing(points, *index);
+    }
+    return *index;
+  }
+
+  const internal::NeighbourTable& neighbourTable() {
+    if (!table) {
+      table = std::make_unique<internal::NeighbourTable>(
+          internal::nearestNeighbourTable(points, kJoinNeighbours + 1, &cloudIndex()));
+    }
+    return *table;
+  }
+};
+
+DefectNeighbourhood::DefectNeighbourhood(const Points& points_cad, const Triangles& faces)
+    : impl_(new Impl{points_cad, faces, nullptr, 0.0, nullptr}) {}
+
+DefectNeighbourhood::~DefectNeighbourhood() = default;
+
 std::vector<std::string> validate(const DefectConfig& config) {
   std::vector<std::string> errors;
   if (config.min_points < 1) {
@@ -104,6 +133,17 @@ DefectResult findDefects(const Points& points_cad,
                          const std::vector<float>& deviation,
                          const ToleranceConfig& tolerance,
                          const DefectConfig& config) {
+  DefectNeighbourhood neighbourhood(points_cad, faces);
+  return findDefects(neighbourhood, deviation, tolerance, config);
+}
+
+DefectResult findDefects(DefectNeighbourhood& neighbourhood,
+                         const std::vector<float>& deviation,
+                         const ToleranceConfig& tolerance,
+                         const DefectConfig& config) {
+  DefectNeighbourhood::Impl& surface = *neighbourhood.impl_;
+  const Points& points_cad = surface.points;
+  const Triangles& faces = surface.faces;
   DefectResult result;
   result.point_region.assign(points_cad.size(), -1);
   std::vector<int> sign(points_cad.size(), 0);
@@ -119,7 +159,7 @@ DefectResult findDefects(const Points& points_cad,
   }
   // Out-of-tolerance points of one sign that are neighbours on the scan surface join.
   DisjointSets sets(points_cad.size());
-  std::unique_ptr<PointIndex> index;
+  const PointIndex* index = nullptr;
   double spacing = 0.0;
   if (!faces.empty()) {
     for (const auto& face : faces) {
@@ -132,8 +172,8 @@ DefectResult findDefects(const Points& points_cad,
       }
     }
   } else {
-    index = std::make_unique<PointIndex>(points_cad);
-    spacing = medianSpacing(points_cad, *index);
+    index = &surface.cloudIndex();
+    spacing = surface.spacing;
     const double reach = config.neighbour_spacings * spacing;
     const auto sameSide = [&](std::size_t i, int j, double squared_distance) {
       return squared_distance <= reach * reach && sign[static_cast<std::size_t>(j)] == sign[i];
@@ -146,8 +186,7 @@ DefectResult findDefects(const Points& points_cad,
                                     points_cad.end(),
                                     [](const Eigen::Vector3d& p) { return p.allFinite(); });
     if (finite && outside.size() * kTableShare >= points_cad.size()) {
-      const internal::NeighbourTable table =
-          internal::nearestNeighbourTable(points_cad, kJoinNeighbours + 1, index.get());
+      const internal::NeighbourTable& table = surface.neighbourTable();
       for (const std::size_t i : outside) {
         for (const int* j = table.of(i); j != table.of(i) + table.k; ++j) {
           const auto other = static_cast<std::size_t>(*j);
@@ -224,7 +263,7 @@ DefectResult findDefects(const Points& points_cad,
       sampled.push_back(i);
     }
   }
-  const std::vector<double> area = pointAreas(points_cad, faces, sampled, index.get(), spacing);
+  const std::vector<double> area = pointAreas(points_cad, faces, sampled, index, spacing);
   std::vector<double> area_sum(regions.size(), 0.0);
   std::vector<std::size_t> area_count(regions.size(), 0);
   for (const std::size_t i : sampled) {

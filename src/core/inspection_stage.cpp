@@ -33,7 +33,7 @@ std::string describeDefect(const DefectRegion& defect) {
 // the band narrowed by U (acceptance) and widened by U (rejection beyond it). The same region
 // rules as the defects, so a zone's verdict and the defect list agree where U is 0.
 ConformanceZones conformanceZones(const DeviationMap& map,
-                                  const Triangles& faces,
+                                  DefectNeighbourhood& surface,
                                   const PipelineConfig& config) {
   ConformanceZones zones;
   const double u = config.verdict.measurement_uncertainty;
@@ -45,7 +45,7 @@ ConformanceZones conformanceZones(const DeviationMap& map,
   zones.rejection_lower = rejection.lower;
   zones.rejection_upper = rejection.upper;
   zones.regions_beyond_rejection =
-      findDefects(map.points, faces, map.deviation, rejection, config.defects).regions.size();
+      findDefects(surface, map.deviation, rejection, config.defects).regions.size();
   zones.inside_rejection_fraction = inToleranceFraction(map.deviation, rejection);
   zones.acceptance_lower = config.tolerance.lower + u;
   zones.acceptance_upper = config.tolerance.upper - u;
@@ -53,7 +53,7 @@ ConformanceZones conformanceZones(const DeviationMap& map,
   if (zones.acceptance_lower < zones.acceptance_upper) {
     const ToleranceConfig acceptance{zones.acceptance_upper, zones.acceptance_lower};
     zones.regions_outside_acceptance =
-        findDefects(map.points, faces, map.deviation, acceptance, config.defects).regions.size();
+        findDefects(surface, map.deviation, acceptance, config.defects).regions.size();
     zones.inside_acceptance_fraction = inToleranceFraction(map.deviation, acceptance);
   }
   return zones;
@@ -153,11 +153,12 @@ void measurePart(const Model& model,
   summarizeShapeDeviation(map.shape_deviation, &result->deviation);
   result->deviation.coverage = surfaceCoverage(
       model, map.points, config.deviation.coverage_distance_cells * model.cellSize());
-  DefectResult defects =
-      findDefects(map.points, scan.faces, map.deviation, config.tolerance, config.defects);
+  // One neighbourhood for the band and, with a measurement uncertainty, its two guard bands.
+  DefectNeighbourhood surface(map.points, scan.faces);
+  DefectResult defects = findDefects(surface, map.deviation, config.tolerance, config.defects);
   result->defects = std::move(defects.regions);
   map.defect = std::move(defects.point_region);
-  result->conformance = conformanceZones(map, scan.faces, config);
+  result->conformance = conformanceZones(map, surface, config);
   result->scan_faces = scan.faces;
   // A band narrower than the residual noise of the fit flags scattered points, not the part.
   const double band = std::min(config.tolerance.upper, -config.tolerance.lower);

@@ -179,6 +179,37 @@ TEST(Defects, NeighboursFromOneTableOrPerPointGiveTheSameRegions) {
   }
 }
 
+// The guard bands judge three bands on one scan through one DefectNeighbourhood: its kd-tree,
+// spacing and neighbour table, built for the first band that needs them, must give every band
+// the regions a call of its own gives, on a mesh and on a cloud, in the per-point case (a band
+// above the noise) and the table's (a band far below it), in either order.
+TEST(Defects, OneNeighbourhoodForSeveralBandsGivesEachBandItsOwnRegions) {
+  const std::vector<SurfaceDefect> defects = {{Eigen::Vector3d(-0.02, 0.02, 0.0), 0.008, 6e-4},
+                                              {Eigen::Vector3d(0.02, -0.01, 0.0), 0.006, -4e-4}};
+  const PlaneScan scan = scanPlane(defects, 5e-5, 5);
+  const std::vector<double> bands = {2e-4, 3e-5, 3e-4, 1e-4};
+  for (const bool mesh : {true, false}) {
+    SCOPED_TRACE(mesh ? "mesh" : "cloud");
+    const Triangles faces = mesh ? scan.faces : Triangles();
+    DefectNeighbourhood surface(scan.points, faces);
+    for (const double half_width : bands) {
+      SCOPED_TRACE(half_width);
+      const DefectResult alone =
+          findDefects(scan.points, faces, scan.deviation, band(half_width), {});
+      const DefectResult shared = findDefects(surface, scan.deviation, band(half_width), {});
+      ASSERT_GE(alone.regions.size(), 2u);
+      ASSERT_EQ(shared.regions.size(), alone.regions.size());
+      for (std::size_t r = 0; r < alone.regions.size(); ++r) {
+        EXPECT_EQ(shared.regions[r].points, alone.regions[r].points) << r;
+        EXPECT_EQ(shared.regions[r].peak, alone.regions[r].peak) << r;
+        EXPECT_EQ(shared.regions[r].centroid, alone.regions[r].centroid) << r;
+        EXPECT_EQ(shared.regions[r].area, alone.regions[r].area) << r;
+      }
+      EXPECT_EQ(shared.point_region, alone.point_region);
+    }
+  }
+}
+
 TEST(Defects, SmallRegionsAndUnmatchedPointsAreNotDefects) {
   // A 1 mm-radius bump covers ~12 grid points: reported with min_points 5, not with 20.
   const SurfaceDefect bump{Eigen::Vector3d(0.0, 0.0, 0.0), 0.001, 5e-4};
