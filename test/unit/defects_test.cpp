@@ -137,6 +137,18 @@ TEST(Defects, NoiseAloneGivesNoRegionAtAFourSigmaBand) {
   }
 }
 
+// The same regions in the same order, bit for bit.
+void expectSameRegions(const DefectResult& a, const DefectResult& b) {
+  ASSERT_EQ(a.regions.size(), b.regions.size());
+  for (std::size_t r = 0; r < b.regions.size(); ++r) {
+    EXPECT_EQ(a.regions[r].points, b.regions[r].points) << r;
+    EXPECT_EQ(a.regions[r].sign, b.regions[r].sign) << r;
+    EXPECT_EQ(a.regions[r].peak, b.regions[r].peak) << r;
+    EXPECT_EQ(a.regions[r].centroid, b.regions[r].centroid) << r;
+    EXPECT_EQ(a.regions[r].area, b.regions[r].area) << r;
+  }
+}
+
 // A band far below the noise puts most of a cloud out of tolerance; its neighbours then come
 // from one table of the whole cloud instead of a kd-tree query per point. The regions must be
 // the same: the same cloud with eight in-tolerance copies of itself 10 m away (the spacing,
@@ -166,14 +178,7 @@ TEST(Defects, NeighboursFromOneTableOrPerPointGiveTheSameRegions) {
               dense.regions.size());
   ASSERT_GT(outside * 8, scan.points.size());  // the table's case
   ASSERT_GE(dense.regions.size(), 1u);
-  ASSERT_EQ(sparse.regions.size(), dense.regions.size());
-  for (std::size_t r = 0; r < dense.regions.size(); ++r) {
-    EXPECT_EQ(sparse.regions[r].points, dense.regions[r].points) << r;
-    EXPECT_EQ(sparse.regions[r].sign, dense.regions[r].sign) << r;
-    EXPECT_EQ(sparse.regions[r].peak, dense.regions[r].peak) << r;
-    EXPECT_EQ(sparse.regions[r].centroid, dense.regions[r].centroid) << r;
-    EXPECT_EQ(sparse.regions[r].area, dense.regions[r].area) << r;
-  }
+  expectSameRegions(sparse, dense);
   for (std::size_t i = 0; i < scan.points.size(); ++i) {
     ASSERT_EQ(sparse.point_region[i], dense.point_region[i]) << i;
   }
@@ -198,13 +203,7 @@ TEST(Defects, OneNeighbourhoodForSeveralBandsGivesEachBandItsOwnRegions) {
           findDefects(scan.points, faces, scan.deviation, band(half_width), {});
       const DefectResult shared = findDefects(surface, scan.deviation, band(half_width), {});
       ASSERT_GE(alone.regions.size(), 2u);
-      ASSERT_EQ(shared.regions.size(), alone.regions.size());
-      for (std::size_t r = 0; r < alone.regions.size(); ++r) {
-        EXPECT_EQ(shared.regions[r].points, alone.regions[r].points) << r;
-        EXPECT_EQ(shared.regions[r].peak, alone.regions[r].peak) << r;
-        EXPECT_EQ(shared.regions[r].centroid, alone.regions[r].centroid) << r;
-        EXPECT_EQ(shared.regions[r].area, alone.regions[r].area) << r;
-      }
+      expectSameRegions(shared, alone);
       EXPECT_EQ(shared.point_region, alone.point_region);
     }
   }
