@@ -6,17 +6,18 @@
 // with status "ok"; a wrong pose reported as "ok" is counted separately (it must never happen).
 //
 //   registration_eval --cad FILE [--cad-scale S] [--noise R] [--partial] [--outliers F]
-//                     [--points N] [--cases N] [--first-seed N] [--mesh-copy] [--camera [--table]]
-//                     [--json] [--config YAML]
+//                     [--points N] [--cases N] [--first-seed N] [--mesh-copy]
+//                     [--camera [--table] [--edge-on DEG]] [--json] [--config YAML]
 //
 // --mesh-copy is the paper's §4.5 experiment: the scan is the CAD mesh itself, vertices moved by
 // Gaussian noise along their normals, at a random pose (a mesh scan, faces included).
 // --camera registers one range image of the virtual scanner per case instead; --table puts the
 // part on a table that the camera sees around it (the success rule's centroid is the part's
-// points only). Environment:
-// FI_KEEP_GRID keeps a camera view's grid, FI_NO_NORMALS drops the scan's normals, FI_VERBOSE
-// prints every case's status message under its line, FI_DIAG how the pose relates to the truth
-// (printTruthDiagnostics).
+// points only); --edge-on DEG turns the part so that the optical axis lies within DEG of the
+// plane of its two widest principal axes (a blade or a plate seen nearly edge-on: a narrow strip).
+// Environment: FI_KEEP_GRID keeps a camera view's grid, FI_NO_NORMALS drops the scan's normals,
+// FI_VERBOSE prints every case's status message under its line, FI_DIAG how the pose relates to the
+// truth (printTruthDiagnostics).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,6 +27,7 @@
 #include <string>
 
 #include "pose_error.h"
+#include <Eigen/Eigenvalues>
 
 #include "freeform_inspection/config_yaml.h"
 #include "freeform_inspection/model.h"
@@ -46,9 +48,10 @@ struct Options {
   std::uint64_t first_seed = 1;
   bool json = false;
   bool mesh_copy = false;
-  bool camera = false;  // --camera: one VGA range image (virtual_scanner.h) per case
-  bool table = false;   // --table: the camera also sees the table the part rests on
-  std::string config;   // --config: a pipeline YAML (config/default.yaml's keys); default: none
+  bool camera = false;        // --camera: one VGA range image (virtual_scanner.h) per case
+  bool table = false;         // --table: the camera also sees the table the part rests on
+  double edge_on_deg = -1.0;  // --edge-on: camera views within this of the part's plane; < 0 off
+  std::string config;  // --config: a pipeline YAML (config/default.yaml's keys); default: none
 };
 
 // Share of the scan's finite points within `reach` of the CAD at pose T.
@@ -132,6 +135,51 @@ fi::Scan noisyMeshCopy(const fi::TriangleMesh& mesh,
   return scan;
 }
 
+// --edge-on: the CAD → sensor pose of a camera looking along a direction within `tilt_deg` of
+// the plane of the vertices' two widest principal axes (from either side, any roll: all from
+// the seed), at the distance where the CAD's bounding sphere spans `fill` of the image's height
+// (about the random pose's rule, virtual_scanner.h).
+Eigen::Isometry3d edgeOnPose(const fi::TriangleMesh& mesh,
+                             const fi::VirtualScannerConfig& camera,
+                             double diagonal,
+                             double tilt_deg,
+                             std::uint64_t seed) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto& v : mesh.vertices) {
+    centre += v;
+  }
+  centre /= static_cast<double>(mesh.vertices.size());
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  for (const auto& v : mesh.vertices) {
+    spread += (v - centre) * (v - centre).transpose();
+  }
+  const Eigen::Matrix3d axes =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread).eigenvectors();
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const double tilt = (unit(rng) * 2.0 - 1.0) * tilt_deg * kDeg;  // from the plane
+  const double azimuth = 360.0 * kDeg * unit(rng);
+  const double roll = 360.0 * kDeg * unit(rng);
+  const Eigen::Vector3d look =
+      (std::sin(tilt) * axes.col(0) +
+       std::cos(tilt) * (std::cos(azimuth) * axes.col(1) + std::sin(azimuth) * axes.col(2)))
+          .normalized();
+  const Eigen::Vector3d across = look.unitOrthogonal();
+  const Eigen::Vector3d right = std::cos(roll) * across + std::sin(roll) * look.cross(across);
+  Eigen::Matrix3d rotation;
+  rotation.row(0) = right;
+  rotation.row(1) = look.cross(right);
+  rotation.row(2) = look;
+  const double half_height = std::tan(0.5 * camera.horizontal_fov_deg * kDeg) *
+                             static_cast<double>(camera.height) / static_cast<double>(camera.width);
+  const double distance = diagonal / (camera.fill_ratio * 2.0 * half_height);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = rotation;
+  pose.translation() = Eigen::Vector3d(0.0, 0.0, distance) - rotation * centre;
+  return pose;
+}
+
 bool parse(int argc, char** argv, Options* options) {
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
@@ -156,6 +204,8 @@ bool parse(int argc, char** argv, Options* options) {
       options->camera = true;
     } else if (flag == "--table") {
       options->table = true;
+    } else if (flag == "--edge-on" && has_value) {
+      options->edge_on_deg = std::atof(argv[++i]);
     } else if (flag == "--mesh-copy") {
       options->mesh_copy = true;
     } else if (flag == "--json") {
@@ -177,7 +227,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: registration_eval --cad FILE [--cad-scale S] [--noise R] "
                  "[--partial] [--outliers F] [--points N] [--cases N] [--first-seed N] "
-                 "[--mesh-copy] [--camera [--table]] [--json] [--config YAML]\n");
+                 "[--mesh-copy] [--camera [--table] [--edge-on DEG]] [--json] [--config YAML]\n");
     return 2;
   }
   fi::PipelineConfig pipeline_config;
@@ -234,6 +284,11 @@ int main(int argc, char** argv) {
       camera.fill_ratio = 0.8;
       camera.noise_ratio = config.noise_ratio;
       camera.support = options.table;
+      if (options.edge_on_deg >= 0.0) {
+        camera.random_pose = false;
+        camera.T_sensor_cad =
+            edgeOnPose(model.mesh(), camera, diagonal, options.edge_on_deg, config.seed);
+      }
       const fi::VirtualScan view = fi::makeVirtualScan(model.query(), camera);
       if (!view.status.ok()) {
         std::fprintf(stderr, "registration_eval: %s\n", view.status.message.c_str());
