@@ -115,6 +115,11 @@ constexpr double kFarProbeReaches[] = {0.1, 0.2, 0.3};
 // than 2.5 cells, and a view of the same elbow at 0.5 % noise stayed 38° along it
 // (docs/registration.md, "Far probes pair farther").
 constexpr double kFarProbeCutoffScale = 1.6;
+// Rounds of the retries: a retried pose that the scan sides with but that still leaves some of
+// it off the CAD is retried in turn, as its turns and probes are not the first pose's. An
+// L-block seen edge-on (0.1 % noise): the first pose put 0.29 of the view's surface on the
+// CAD, the retry a leg-for-leg turn 0.81, and the truth, 0.998, is a quarter turn of that one.
+constexpr int kRetryRounds = 2;
 // Retried poses apart from the pose whose weakest motions are probed in turn.
 constexpr std::size_t kProbedRivals = 3;
 // How far the centroids must lean the best pose's way before the fitted cells may dismiss a
@@ -126,9 +131,10 @@ constexpr double kLeanSigmas = 2.0;
 // dismissed the truth (docs/benchmarks.md, session 31).
 constexpr double kLeanShare = 0.01;
 
-// The second search (registerWidening) accepts features whose r_max ball covers this share of
-// the first search's min_ball_area: a holed or narrow view has few whole balls (the dragon's
-// view 72 against view 48: 4 features, no congruent triplet; with cut balls 18 and registered).
+// The second search (registerWidening), after a first with fewer than min_features features,
+// accepts features whose r_max ball covers this share of the first search's min_ball_area: a
+// holed or narrow view has few whole balls (the dragon's view 72 against view 48: 4 features,
+// no congruent triplet; with cut balls 18 and registered).
 constexpr double kRetryBallShare = 0.5;
 
 // A refined candidate pose and how much of the scan it explains.
@@ -545,7 +551,8 @@ void registerScan(const Model& model,
   // walls. A retried pose the scan clearly sides with (scanPrefers), still after it is refined as
   // fully as the pose, replaces it; one the scan cannot tell from it becomes a contender, so that
   // the verification below says ambiguous instead of picking one.
-  if (icp.usable() && surface_share < kProbeBelowSurface) {
+  for (int round = 0; round < kRetryRounds && icp.usable() && surface_share < kProbeBelowSurface;
+       ++round) {
     const ProbeStarts probes = probeStarts(model, set, icp.T_cad_scan, coarse_truncation);
     std::vector<Eigen::Isometry3d> starts = probes.near;
     const bool turn = surface_share < kRetryBelowSurface;
@@ -602,6 +609,7 @@ void registerScan(const Model& model,
         fine_scores.push_back(score);
       }
     }
+    bool moved_on = false;
     if (chosen != nullptr) {
       const IcpResult moved = refine(chosen->T_cad_scan);
       if (moved.usable() && scanPrefers(termsAt(moved.T_cad_scan), current_terms)) {
@@ -610,7 +618,11 @@ void registerScan(const Model& model,
         contenders.push_back(*chosen);
         fine_scores.push_back(std::max(chosen_score, fineScore(icp.T_cad_scan)));
         best = contenders.size() - 1;
+        moved_on = true;
       }
+    }
+    if (!moved_on) {
+      break;  // the pose stands: a second round would search from the same place
     }
   }
   watch.lap("icp");
@@ -815,11 +827,11 @@ void addTimings(const std::vector<StageTiming>& extra, std::vector<StageTiming>*
 }
 
 // registerScan(), and when no pose explained the scan, once more with `retry_candidates` per
-// feature and features whose r_max ball is cut down to half the usual share: on a partial or
-// noisy scan a feature's true place can rank below the first max_candidates in descriptor space
-// (a partial view's wide scales read flatter than the CAD's there), and a narrow or holed view
-// has too few whole balls to give a triplet its three true matches. Scans that register at the
-// first attempt are not touched.
+// feature, and where the features were few, with features whose r_max ball is cut down to half
+// the usual share: on a partial or noisy scan a feature's true place can rank below the first
+// max_candidates in descriptor space (a partial view's wide scales read flatter than the CAD's
+// there), and a narrow or holed view has too few whole balls to give a triplet its three true
+// matches. Scans that register at the first attempt are not touched.
 void registerWidening(const Model& model,
                       const Points& scan_points,
                       const DescriptorResult& scan,
@@ -832,16 +844,24 @@ void registerWidening(const Model& model,
   const int first = config.correspondence.max_candidates;
   const int wider = config.correspondence.retry_candidates;
   // Too few features for candidates (a narrow view) is worth it too: cut balls may add some.
-  const bool worth_retrying =
-      result->counts.candidates > 0 ||
+  const bool few_features =
       result->counts.features < static_cast<std::size_t>(config.features.min_features);
+  const bool worth_retrying = result->counts.candidates > 0 || few_features;
   if (result->registration != RegistrationStatus::kFailed ||
       result->status.code != StatusCode::kRegistrationFailed || !worth_retrying || wider <= first) {
     return;
   }
   PipelineConfig widened = config;
   widened.correspondence.max_candidates = wider;
-  widened.features.min_ball_area = kRetryBallShare * config.features.min_ball_area;
+  // Cut balls only where whole ones were too few (the first search relaxed its share once
+  // already): with enough features they would only trade good ones for cut ones.
+  if (few_features) {
+    widened.features.min_ball_area = kRetryBallShare * config.features.min_ball_area;
+  }
+  const std::string searched =
+      "up to " + std::to_string(wider) +
+      " CAD candidates per feature (correspondence.retry_candidates)" +
+      (few_features ? std::string(" and features whose ball the view cuts") : std::string());
   InspectionResult retry = before;
   retry.timings.clear();
   registerScan(model, scan_points, scan, oriented, widened, progress, &retry);
@@ -850,18 +870,15 @@ void registerWidening(const Model& model,
   }
   if (retry.registration == RegistrationStatus::kFailed) {
     addTimings(retry.timings, &result->timings);
-    result->warnings.push_back("searched again with up to " + std::to_string(wider) +
-                               " CAD candidates per feature (correspondence.retry_candidates) "
-                               "and features whose ball the view cuts: no pose either");
+    result->warnings.push_back("searched again with " + searched + ": no pose either");
     return;
   }
   std::vector<StageTiming> timings = result->timings;
   addTimings(retry.timings, &timings);
   retry.timings = std::move(timings);
-  retry.warnings.push_back("registered with up to " + std::to_string(wider) +
-                           " CAD candidates per feature (correspondence.retry_candidates) and "
-                           "features whose ball the view cuts: with " +
-                           std::to_string(first) + " and whole balls no pose explained the scan");
+  retry.warnings.push_back("registered with " + searched + ": with " + std::to_string(first) +
+                           (few_features ? " and whole balls" : "") +
+                           " no pose explained the scan");
   *result = std::move(retry);
 }
 
