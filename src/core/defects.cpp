@@ -93,12 +93,15 @@ struct DefectNeighbourhood::Impl {
   const Triangles& faces;
   std::unique_ptr<PointIndex> index;                // clouds, on first need
   double spacing = 0.0;                             // median spacing, with the index
+  bool finite = false;                              // every point finite, with the index
   std::unique_ptr<internal::NeighbourTable> table;  // clouds, when much is out of tolerance
 
   const PointIndex& cloudIndex() {
     if (!index) {
       index = std::make_unique<PointIndex>(points);
       spacing = medianSpacing(points, *index);
+      finite = std::all_of(
+          points.begin(), points.end(), [](const Eigen::Vector3d& p) { return p.allFinite(); });
     }
     return *index;
   }
@@ -113,7 +116,7 @@ struct DefectNeighbourhood::Impl {
 };
 
 DefectNeighbourhood::DefectNeighbourhood(const Points& points_cad, const Triangles& faces)
-    : impl_(new Impl{points_cad, faces, nullptr, 0.0, nullptr}) {}
+    : impl_(new Impl{points_cad, faces, nullptr, 0.0, false, nullptr}) {}
 
 DefectNeighbourhood::~DefectNeighbourhood() = default;
 
@@ -182,10 +185,7 @@ DefectResult findDefects(DefectNeighbourhood& neighbourhood,
     // much of the scan is out of tolerance (a band far below the noise), one neighbour table of
     // the whole cloud on a grid costs a tenth of a kd-tree query per point; its rows are the
     // kd-tree's answers, so the regions are the same either way.
-    const bool finite = std::all_of(points_cad.begin(),
-                                    points_cad.end(),
-                                    [](const Eigen::Vector3d& p) { return p.allFinite(); });
-    if (finite && outside.size() * kTableShare >= points_cad.size()) {
+    if (surface.finite && outside.size() * kTableShare >= points_cad.size()) {
       const internal::NeighbourTable& table = surface.neighbourTable();
       for (const std::size_t i : outside) {
         for (const int* j = table.of(i); j != table.of(i) + table.k; ++j) {
