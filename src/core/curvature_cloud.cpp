@@ -456,6 +456,14 @@ Eigen::Matrix<double, 2, 3> tangentBasis(const Eigen::Vector3d& normal) {
 // Neighbours whose normal turned by more than this are on the other side of a thin wall.
 constexpr double kOppositeSide = -0.5;
 
+// Neighbours whose normal turned by more than 45° from the point's are left out of its quadric:
+// the quadric is a height over the point's tangent plane, and there such a neighbour's surface
+// climbs faster than the height can follow (slope above 1: a crease, a hole's wall, the far side
+// of an edge) while its noise enters the height magnified by more than √2. Kept, they bent a
+// machined block's faces near its bores and edges enough to slide a 2 %-noise view 2.5 % of L
+// along its length (registration.md, "Onto the neighbourhood quadrics").
+constexpr double kQuadricSide = 0.7071067811865476;  // cos 45°
+
 // Relative pivot below which the quadric's six coefficients are not all determined (neighbours
 // on a line, or too few across it), measured on coordinates scaled to unit tangent spread.
 constexpr double kQuadricPivotRatio = 1e-4;
@@ -473,7 +481,7 @@ Eigen::Vector3d ontoQuadric(
   Vector6 rhs = Vector6::Zero();
   for (int j = 0; j < k; ++j) {
     const auto other = std::size_t(neighbours[j]);
-    if (normal.dot(normals[other]) < kOppositeSide) {
+    if (normal.dot(normals[other]) < kQuadricSide) {
       continue;
     }
     const Eigen::Vector3d d = points[other] - p;
