@@ -215,7 +215,11 @@ double spreadBand(const VerificationSet& set,
   return std::clamp(3.0 * middle / 0.6745, 0.25 * cell, limit);
 }
 
-// The symmetric twins S·T and S⁻¹·T of `pose` (symmetry.h), refined.
+// The symmetric twins S·T and S⁻¹·T of `pose` (symmetry.h), refined, each kept as found where
+// that scores higher. The twin of a refined pose under an exact symmetry is as refined as the
+// pose; the short ICP on the verification cells can only let it drift along what the view fixes
+// weakly (an ABC bar's half-turn twin slid along the bar: 0.35 of the view explained after it,
+// 0.40 before, as much as the pose itself), which reported the bar `ok` as its twin.
 std::vector<RefinedPose> refinedTwins(const Model& model,
                                       const Eigen::Isometry3d& pose,
                                       const VerificationSet& set,
@@ -225,7 +229,16 @@ std::vector<RefinedPose> refinedTwins(const Model& model,
     twins.push_back(symmetry.S * pose);
     twins.push_back(symmetry.S.inverse() * pose);
   }
-  return refineAll(model, twins, set, config);
+  std::vector<RefinedPose> refined = refineAll(model, twins, set, config);
+  const double truncation = config.registration.verification_distance_cells * model.cellSize();
+  for (std::size_t t = 0; t < twins.size(); ++t) {
+    const double as_found = verificationScore(
+        twins[t], set, model.query(), truncation, config.registration.normal_tolerance_deg);
+    if (as_found > refined[t].score) {
+      refined[t] = {twins[t], as_found};
+    }
+  }
+  return refined;
 }
 
 // The best verified hypotheses, refined, then the twins of the best, so a symmetric part cannot
@@ -695,14 +708,21 @@ void registerScan(const Model& model,
   // The ranking may have put a twin of the quick ranking's best first, and that twin's own twins
   // were never tried: one of them may explain the scan as well (a bar seen from one side, where
   // the winning twin had slid along the bar and the true pose was its half turn).
+  // A twin joins the contenders unless the best or a contender that explains at least as much
+  // lies near it: the retries' poses about a half turn of a box seen along its length and one
+  // end had drifted a cell or two along it (0.83-0.88 of the view explained) and kept out its
+  // exact twins (0.964, as the pose itself). The drifted contender stays too: here a rival is
+  // only added, never taken away.
   if (separatePoses(hypotheses_refined.twinned, result->T_cad_scan, reference, cell)) {
     for (const RefinedPose& twin : refinedTwins(model, result->T_cad_scan, set, config)) {
-      const bool apart =
-          std::all_of(contenders.begin(), contenders.end(), [&](const RefinedPose& c) {
-            return separatePoses(c.T_cad_scan, twin.T_cad_scan, reference, cell);
-          });
-      if (apart) {
-        fine_scores.push_back(fineScore(twin.T_cad_scan));
+      const double twin_score = fineScore(twin.T_cad_scan);
+      bool covered = false;
+      for (std::size_t c = 0; c < contenders.size() && !covered; ++c) {
+        covered = !separatePoses(contenders[c].T_cad_scan, twin.T_cad_scan, reference, cell) &&
+                  (c == best || fine_scores[c] >= twin_score);
+      }
+      if (!covered) {
+        fine_scores.push_back(twin_score);
         contenders.push_back(twin);
       }
     }
@@ -744,6 +764,17 @@ void registerScan(const Model& model,
            (fitted_band > 0.0 && scanLeans(best_terms, terms, kLeanSigmas, kLeanShare) &&
             scanPrefers(best_fitted_terms, fittedTermsAt(pose)));
   };
+  // Contenders may lie near each other (a twin beside a drifted pose): each alternative is
+  // reported once.
+  const auto addAlternative = [&](const Eigen::Isometry3d& pose) {
+    if (std::all_of(result->alternatives.begin(),
+                    result->alternatives.end(),
+                    [&](const Eigen::Isometry3d& other) {
+                      return separatePoses(other, pose, reference, cell);
+                    })) {
+      result->alternatives.push_back(pose);
+    }
+  };
   for (std::size_t c = 0; c < contenders.size(); ++c) {
     if (c == best || fine_scores[c] < reach ||
         !separatePoses(result->T_cad_scan, contenders[c].T_cad_scan, reference, cell)) {
@@ -765,7 +796,7 @@ void registerScan(const Model& model,
     // does not side with the best even then, refining it to convergence, which lets the rival
     // explain more, would not change that: it stays a rival without costing that ICP.
     if (!sidesWithBest(contenders[c].T_cad_scan)) {
-      result->alternatives.push_back(contenders[c].T_cad_scan);
+      addAlternative(contenders[c].T_cad_scan);
       continue;
     }
     // The scan sides against the rival as found; it stays beaten unless its refinement, landing
@@ -783,7 +814,7 @@ void registerScan(const Model& model,
     const bool refined =
         rival.usable() && separatePoses(result->T_cad_scan, rival.T_cad_scan, reference, cell);
     if (refined && !sidesWithBest(rival.T_cad_scan)) {
-      result->alternatives.push_back(rival.T_cad_scan);
+      addAlternative(rival.T_cad_scan);
     }
   }
   // How near the best distinct rival comes, on the scores matched to the measured residual.

@@ -3,8 +3,9 @@
 # Copyright 2026 The freeform_inspection authors
 """Writes generated test parts (see README.md): shapes of the kinds the package inspects that
 the public meshes lack. Python 3 standard library only, deterministic, metres.
-Usage: python3 make_parts.py          writes meshes/bent_sheet_bracket.stl and
-                                      meshes/hat_channel.stl (the tests use them)
+Usage: python3 make_parts.py          writes meshes/bent_sheet_bracket.stl,
+                                      meshes/hat_channel.stl and meshes/box_bar.stl (the
+                                      tests use them)
        python3 make_parts.py DIR      writes those two, a lumpy casting and an open freeform
                                       panel into DIR, for bench/registration_eval
                                       (docs/benchmarks.md)
@@ -167,9 +168,32 @@ def freeform_panel():
     return quads(rows)
 
 
+def box_bar():
+    """A 10 x 20 x 100 mm bar centred on the origin: 8 corners, each face two triangles."""
+    half = (0.005, 0.01, 0.05)
+
+    def corner(sx, sy, sz):
+        return (sx * half[0], sy * half[1], sz * half[2])
+
+    faces = []
+    for axis in range(3):
+        for sign in (-1, 1):
+            # The face's four corners counter-clockwise seen from outside.
+            u, v = (axis + 1) % 3, (axis + 2) % 3
+            ring = []
+            for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+                s = [0, 0, 0]
+                s[axis], s[u], s[v] = sign, su * sign, sv
+                ring.append(corner(*s))
+            faces.append((ring[0], ring[1], ring[2]))
+            faces.append((ring[0], ring[2], ring[3]))
+    return faces
+
+
 if __name__ == '__main__':
     write_binary_stl(os.path.join(HERE, 'bent_sheet_bracket.stl'), bent_sheet_bracket())
     write_binary_stl(os.path.join(HERE, 'hat_channel.stl'), hat_channel())
+    write_binary_stl(os.path.join(HERE, 'box_bar.stl'), box_bar())
     if len(sys.argv) > 1:
         os.makedirs(sys.argv[1], exist_ok=True)
         write_binary_stl(os.path.join(sys.argv[1], 'bent_sheet_bracket.stl'), bent_sheet_bracket())
