@@ -215,11 +215,7 @@ double spreadBand(const VerificationSet& set,
   return std::clamp(3.0 * middle / 0.6745, 0.25 * cell, limit);
 }
 
-// The symmetric twins S·T and S⁻¹·T of `pose` (symmetry.h), refined, each kept as found where
-// that scores higher. The twin of a refined pose under an exact symmetry is as refined as the
-// pose; the short ICP on the verification cells can only let it drift along what the view fixes
-// weakly (an ABC bar's half-turn twin slid along the bar: 0.35 of the view explained after it,
-// 0.40 before, as much as the pose itself), which reported the bar `ok` as its twin.
+// The symmetric twins S·T and S⁻¹·T of `pose` (symmetry.h), refined.
 std::vector<RefinedPose> refinedTwins(const Model& model,
                                       const Eigen::Isometry3d& pose,
                                       const VerificationSet& set,
@@ -229,16 +225,7 @@ std::vector<RefinedPose> refinedTwins(const Model& model,
     twins.push_back(symmetry.S * pose);
     twins.push_back(symmetry.S.inverse() * pose);
   }
-  std::vector<RefinedPose> refined = refineAll(model, twins, set, config);
-  const double truncation = config.registration.verification_distance_cells * model.cellSize();
-  for (std::size_t t = 0; t < twins.size(); ++t) {
-    const double as_found = verificationScore(
-        twins[t], set, model.query(), truncation, config.registration.normal_tolerance_deg);
-    if (as_found > refined[t].score) {
-      refined[t] = {twins[t], as_found};
-    }
-  }
-  return refined;
+  return refineAll(model, twins, set, config);
 }
 
 // The best verified hypotheses, refined, then the twins of the best, so a symmetric part cannot
