@@ -461,7 +461,7 @@ constexpr double kOppositeSide = -0.5;
 // climbs faster than the height can follow (slope above 1: a crease, a hole's wall, the far side
 // of an edge) while its noise enters the height magnified by more than √2. Kept, they bent a
 // machined block's faces near its bores and edges enough to slide a 2 %-noise view 2.5 % of L
-// along its length (registration.md, "Onto the neighbourhood quadrics").
+// along its length (registration.md, "The quadric leaves out neighbours turned by more than 45°").
 constexpr double kQuadricSide = 0.7071067811865476;  // cos 45°
 
 // Relative pivot below which the quadric's six coefficients are not all determined (neighbours
