@@ -419,17 +419,7 @@ TEST(Registration, MachinedBlockViewAtTwoPercentIsNotSlidAlongTheBlock) {
   static const auto block = load(kBlock, 1.0);
   SyntheticScanConfig config = caseConfig(3, 0.02, true, 0.0);
   config.points = 30000;
-  const SyntheticScan truth = makeCase(*block, config);
-  const InspectionResult result = inspect(*block, truth.scan, PipelineConfig());
-  const PoseError error = poseError(result, truth, block->bounds().diagonal());
-  std::printf("%s, %.3f deg, %.4f L, surface on CAD %.3f\n",
-              toString(result.registration),
-              error.rotation_deg,
-              error.centroid_ratio,
-              result.surface_on_cad);
-  ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
-  EXPECT_LT(error.rotation_deg, 2.0);
-  EXPECT_LT(error.centroid_ratio, 0.01);
+  expectRegistered(*block, config);
 }
 
 // The L-block's OpenSCAD export as the benchmark reads it (ASCII STL) seen nearly edge-on by the
