@@ -40,6 +40,9 @@ struct DefectRegion {
   double peak = 0.0;                                   ///< [m] signed, largest magnitude
   double mean = 0.0;                                   ///< [m] mean signed deviation
   int sign = 0;  ///< +1 excess material (bump), -1 missing material (dent)
+  /// [m] the largest chord error (chord_error.h) of the CAD faces the region lies on: where it
+  /// is a good share of the peak, the region may be the CAD's tessellation, not the part.
+  double cad_chord_error = 0.0;
 };
 
 /// Regions, largest |peak| first, and for each point the region it belongs to (-1 for none).

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "freeform_inspection/chord_error.h"
 #include "freeform_inspection/descriptor.h"
 #include "freeform_inspection/mesh.h"
 #include "freeform_inspection/mesh_orientation.h"
@@ -77,6 +78,9 @@ class Model {
   /// Per face, a bit per edge (bit e: edge from corner e to corner e+1) set when the edge is on
   /// the border of an open surface; empty for a closed mesh.
   const std::vector<std::uint8_t>& faceBorderEdges() const { return face_border_edges_; }
+  /// How far its faces may lie from the curved surface they stand for (chord_error.h),
+  /// estimated once on construction.
+  const ChordError& chordError() const { return chord_error_; }
   /// How the mesh's winding was made consistent and outward on construction.
   const OrientationResult& orientation() const { return orientation_; }
   /// True when the model came from a cache entry instead of being computed.
@@ -97,6 +101,7 @@ class Model {
   std::vector<Symmetry> symmetries_;
   std::vector<Eigen::Isometry3d> normal_frame_turns_;  // after descriptors_: computed from them
   std::vector<std::uint8_t> face_border_edges_;
+  ChordError chord_error_;
   bool from_cache_ = false;
 };
 

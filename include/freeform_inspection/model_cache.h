@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "freeform_inspection/chord_error.h"
 #include "freeform_inspection/descriptor.h"
 #include "freeform_inspection/mesh.h"
 #include "freeform_inspection/mesh_orientation.h"
@@ -39,6 +40,7 @@ struct ModelCacheEntry {
   std::string descriptor_key;                   ///< Model::descriptorKey()
   DescriptorResult descriptors;
   std::vector<Symmetry> symmetries;
+  ChordError chord_error;  ///< Model::chordError()
 };
 
 /// @brief The key of a CAD file's entry: a hash of its bytes, the unit scale it is loaded with

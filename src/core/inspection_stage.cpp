@@ -9,8 +9,11 @@
 
 #include "pipeline_internal.h"
 
+#include "freeform_inspection/chord_error.h"
 #include "freeform_inspection/defects.h"
 #include "freeform_inspection/deviation.h"
+#include "freeform_inspection/mesh_query.h"
+#include "freeform_inspection/model.h"
 
 namespace freeform_inspection::internal {
 namespace {
@@ -124,6 +127,62 @@ std::string formatLength(double metres) {
   return text;
 }
 
+namespace {
+
+// A CAD exported coarsely shows its facets in the deviation map of a good part (chord_error.h).
+// Each defect region gets the chord error of the faces it lies on; the result warns where that
+// error is more than a tenth of the tolerance band (the 10:1 rule for a measuring instrument's
+// resolution) and names the regions it could explain.
+void noteChordError(const Model& model,
+                    const DeviationMap& map,
+                    const PipelineConfig& config,
+                    InspectionResult* result) {
+  const ChordError& chord = model.chordError();
+  if (!(chord.max > 0.0) || chord.face.size() != model.mesh().faces.size()) {
+    return;
+  }
+  const double reach = config.deviation.max_distance_ratio * model.bounds().diagonal();
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    if (map.defect[i] < 0) {
+      continue;
+    }
+    const ClosestPoint closest = model.query().closest(map.points[i], reach);
+    if (closest.found) {
+      DefectRegion& region = result->defects[static_cast<std::size_t>(map.defect[i])];
+      region.cad_chord_error =
+          std::max(region.cad_chord_error, chord.face[static_cast<std::size_t>(closest.face)]);
+    }
+  }
+  const double band = std::min(config.tolerance.upper, -config.tolerance.lower);
+  if (!(chord.max > 0.1 * band)) {
+    return;
+  }
+  const Eigen::Vector3d& at = chord.max_at;
+  char where[96];
+  std::snprintf(where, sizeof(where), "(%.4g, %.4g, %.4g) m", at.x(), at.y(), at.z());
+  result->warnings.push_back(
+      "the CAD's faces may lie up to " + formatLength(chord.max) +
+      " from the curved surface they stand for (its chord error, estimated from the turns "
+      "between them; largest at " +
+      where +
+      "), more than a tenth of the tolerance band: "
+      "deviations there measure the tessellation as well as the part; export the CAD with a "
+      "finer chord tolerance");
+  const auto explained =
+      std::count_if(result->defects.begin(), result->defects.end(), [](const DefectRegion& region) {
+        return region.cad_chord_error >= 0.5 * std::abs(region.peak);
+      });
+  if (explained > 0) {
+    result->warnings.push_back(std::to_string(explained) + " of " +
+                               std::to_string(result->defects.size()) +
+                               " defect region(s) lie on CAD faces whose chord error is at "
+                               "least half their peak: they may be the CAD's facets, not the "
+                               "part (defects[].cad_chord_error)");
+  }
+}
+
+}  // namespace
+
 // Deviation, statistics, shape deviation and defect regions of a registered scan.
 void measurePart(const Model& model,
                  const Scan& scan,
@@ -159,6 +218,7 @@ void measurePart(const Model& model,
   result->defects = std::move(defects.regions);
   map.defect = std::move(defects.point_region);
   result->conformance = conformanceZones(map, surface, config);
+  noteChordError(model, map, config, result);
   result->scan_faces = scan.faces;
   // A band narrower than the residual noise of the fit flags scattered points, not the part.
   const double band = std::min(config.tolerance.upper, -config.tolerance.lower);

@@ -113,7 +113,8 @@ Model::Model(TriangleMesh mesh,
       descriptor_key_(descriptorCacheKey(mesh_, descriptor_config)),
       descriptor_config_(descriptor_config),
       query_(std::make_unique<MeshQuery>(mesh_)),
-      face_border_edges_(borderEdgeMasks(mesh_)) {
+      face_border_edges_(borderEdgeMasks(mesh_)),
+      chord_error_(estimateChordError(mesh_)) {
   descriptors_ = describeModel(mesh_, bounds_.diagonal(), descriptor_config);
   symmetries_ = findSymmetries(descriptors_, *query_, cellSize(), bounds_.diagonal());
   normal_frame_turns_ = freeform_inspection::normalFrameTurns(descriptors_.graph);
@@ -137,6 +138,7 @@ Model::Model(ModelCacheEntry entry,
       symmetries_(std::move(entry.symmetries)),
       normal_frame_turns_(freeform_inspection::normalFrameTurns(descriptors_.graph)),
       face_border_edges_(std::move(entry.face_border_edges)),
+      chord_error_(std::move(entry.chord_error)),
       from_cache_(true) {}
 
 ModelCacheEntry Model::cacheEntry(std::vector<std::string> load_warnings) const {
@@ -149,6 +151,7 @@ ModelCacheEntry Model::cacheEntry(std::vector<std::string> load_warnings) const 
   entry.descriptor_key = descriptor_key_;
   entry.descriptors = descriptors_;
   entry.symmetries = symmetries_;
+  entry.chord_error = chord_error_;
   return entry;
 }
 

@@ -27,7 +27,7 @@ namespace {
 
 constexpr char kMagic[8] = {'F', 'I', 'M', 'O', 'D', 'E', 'L', 'C'};
 // Bumped when the layout below changes; the package version covers changes of what is computed.
-constexpr std::uint32_t kFormat = 2;
+constexpr std::uint32_t kFormat = 3;
 
 // Appends values to a byte buffer in the machine's own representation (the cache never leaves
 // the machine that wrote it, and the version check refuses another build's file).
@@ -237,6 +237,12 @@ void putPrepared(const ModelCacheEntry& e, Writer* out) {
     out->putText(warning);
   }
   out->putText(e.descriptor_key);
+  out->putVector(e.chord_error.face);
+  out->put(e.chord_error.max);
+  for (int k = 0; k < 3; ++k) {
+    out->put(e.chord_error.max_at[k]);
+  }
+  out->put(e.chord_error.curved_area_share);
 }
 
 void getPrepared(Reader* in, ModelCacheEntry* e) {
@@ -269,6 +275,12 @@ void getPrepared(Reader* in, ModelCacheEntry* e) {
     e->load_warnings.push_back(in->getText());
   }
   e->descriptor_key = in->getText();
+  e->chord_error.face = in->getVector<double>();
+  e->chord_error.max = in->get<double>();
+  for (int k = 0; k < 3; ++k) {
+    e->chord_error.max_at[k] = in->get<double>();
+  }
+  e->chord_error.curved_area_share = in->get<double>();
 }
 
 // Every face indexes a vertex and has its normal, so no later stage indexes past the mesh.
@@ -482,7 +494,8 @@ ModelCacheRead readModelCache(const std::string& directory, const std::string& k
     entry.symmetries.push_back(symmetry);
   }
   if (!payload.ok() || !payload.atEnd() || !consistent(entry.descriptors) ||
-      !consistent(entry.mesh, entry.face_border_edges)) {
+      !consistent(entry.mesh, entry.face_border_edges) ||
+      entry.chord_error.face.size() != entry.mesh.faces.size()) {
     return unusable(file, "its contents do not fit together");
   }
   ModelCacheRead read;

@@ -166,6 +166,7 @@ void fillDeviation(const fi::InspectionResult& result,
     message.centroid = toPoint(defect.centroid);
     message.bbox_min = toPoint(defect.bbox_min);
     message.bbox_max = toPoint(defect.bbox_max);
+    message.cad_chord_error = defect.cad_chord_error;
     report->defects.push_back(message);
   }
 }

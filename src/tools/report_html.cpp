@@ -167,7 +167,8 @@ std::string defectRow(std::size_t id, const DefectRegion& d) {
                    std::to_string(d.points),
                    number(d.area * 1e6, 3),
                    millimetres(d.peak),
-                   millimetres(d.mean)});
+                   millimetres(d.mean),
+                   millimetres(d.cad_chord_error)});
 }
 
 std::string defectsSection(const std::vector<DefectRegion>& defects) {
@@ -177,7 +178,9 @@ std::string defectsSection(const std::vector<DefectRegion>& defects) {
   }
   html +=
       "<table class=\"defects\">\n<tr><th>id</th><th>material</th><th>centroid x, y, z [mm]</th>"
-      "<th>points</th><th>area [mm&sup2;]</th><th>peak</th><th>mean</th></tr>\n";
+      "<th>points</th><th>area [mm&sup2;]</th><th>peak</th><th>mean</th>"
+      "<th title=\"how far the CAD's faces there may lie from the curved surface they stand "
+      "for\">CAD chord error</th></tr>\n";
   for (std::size_t i = 0; i < defects.size(); ++i) {
     html += defectRow(i, defects[i]);
   }

@@ -79,7 +79,8 @@ nlohmann::ordered_json defectsJson(const std::vector<DefectRegion>& defects) {
                     {"sign", d.sign},
                     {"mean", d.mean},
                     {"bbox_min", vectorJson(d.bbox_min)},
-                    {"bbox_max", vectorJson(d.bbox_max)}});
+                    {"bbox_max", vectorJson(d.bbox_max)},
+                    {"cad_chord_error", d.cad_chord_error}});
   }
   return list;
 }
