@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <random>
 #include <string>
 
@@ -30,6 +31,8 @@
 #include <Eigen/Eigenvalues>
 
 #include "freeform_inspection/config_yaml.h"
+#include "freeform_inspection/io.h"
+#include "freeform_inspection/mesh_query.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
 #include "freeform_inspection/pose_uncertainty.h"
@@ -52,6 +55,9 @@ struct Options {
   bool table = false;         // --table: the camera also sees the table the part rests on
   double edge_on_deg = -1.0;  // --edge-on: camera views within this of the part's plane; < 0 off
   std::string config;  // --config: a pipeline YAML (config/default.yaml's keys); default: none
+  // --scan-mesh: scans are made of this mesh of the same part (same frame and units as the
+  // CAD), e.g. a finer tessellation, so the CAD's chord error shows as it does on a real part.
+  std::string scan_mesh;
 };
 
 // Share of the scan's finite points within `reach` of the CAD at pose T.
@@ -206,6 +212,8 @@ bool parse(int argc, char** argv, Options* options) {
       options->table = true;
     } else if (flag == "--edge-on" && has_value) {
       options->edge_on_deg = std::atof(argv[++i]);
+    } else if (flag == "--scan-mesh" && has_value) {
+      options->scan_mesh = argv[++i];
     } else if (flag == "--mesh-copy") {
       options->mesh_copy = true;
     } else if (flag == "--json") {
@@ -227,7 +235,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: registration_eval --cad FILE [--cad-scale S] [--noise R] "
                  "[--partial] [--outliers F] [--points N] [--cases N] [--first-seed N] "
-                 "[--mesh-copy] [--camera [--table] [--edge-on DEG]] [--json] [--config YAML]\n");
+                 "[--mesh-copy] [--camera [--table] [--edge-on DEG]] [--json] [--config YAML] "
+                 "[--scan-mesh FILE]\n");
     return 2;
   }
   fi::PipelineConfig pipeline_config;
@@ -251,6 +260,20 @@ int main(int argc, char** argv) {
   const double load_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   const double diagonal = model.bounds().diagonal();
+  std::unique_ptr<fi::MeshQuery> scanned_mesh;
+  if (!options.scan_mesh.empty()) {
+    const fi::MeshLoadResult other = fi::loadMesh(options.scan_mesh, options.cad_scale);
+    if (!other.status.ok()) {
+      std::fprintf(stderr, "registration_eval: %s\n", other.status.message.c_str());
+      return 2;
+    }
+    scanned_mesh = std::make_unique<fi::MeshQuery>(other.mesh);
+    std::printf("# scans of %s (%zu vertices); CAD chord error up to %.3g mm\n",
+                options.scan_mesh.c_str(),
+                other.mesh.vertices.size(),
+                model.chordError().max * 1e3);
+  }
+  const fi::MeshQuery& scanned = scanned_mesh ? *scanned_mesh : model.query();
   std::printf("# %s: %zu vertices, L = %.4f m, %zu symmetries, model load %.2f s\n",
               options.cad.c_str(),
               model.mesh().vertices.size(),
@@ -266,7 +289,7 @@ int main(int argc, char** argv) {
   for (int c = 0; c < options.cases; ++c) {
     fi::SyntheticScanConfig config = options.scan;
     config.seed = options.first_seed + static_cast<std::uint64_t>(c);
-    const fi::SyntheticScan generated = fi::makeSyntheticScan(model.query(), config);
+    const fi::SyntheticScan generated = fi::makeSyntheticScan(scanned, config);
     if (!generated.status.ok()) {
       std::fprintf(stderr, "registration_eval: %s\n", generated.status.message.c_str());
       return 2;
@@ -289,7 +312,7 @@ int main(int argc, char** argv) {
         camera.T_sensor_cad =
             edgeOnPose(model.mesh(), camera, diagonal, options.edge_on_deg, config.seed);
       }
-      const fi::VirtualScan view = fi::makeVirtualScan(model.query(), camera);
+      const fi::VirtualScan view = fi::makeVirtualScan(scanned, camera);
       if (!view.status.ok()) {
         std::fprintf(stderr, "registration_eval: %s\n", view.status.message.c_str());
         return 2;
@@ -369,7 +392,7 @@ int main(int argc, char** argv) {
     } else {
       std::printf(
           "seed %3llu %-9s rot %8.3f deg (±%.3f)  t %7.4f %%L (±%.4f)  rms/σ %5.2f  score %.3f  "
-          "fit %.3f  surface %.3f  f/c/k %zu/%zu/%zu  %.2f s%s\n",
+          "fit %.3f  surface %.3f  curve %.2f  f/c/k %zu/%zu/%zu  %.2f s%s\n",
           static_cast<unsigned long long>(config.seed),
           fi::toString(result.registration),
           rotation,
@@ -380,6 +403,7 @@ int main(int argc, char** argv) {
           result.score,
           result.fitness,
           result.surface_on_cad,
+          result.cad_curve_share,
           result.counts.features,
           result.counts.candidates,
           result.counts.correspondences,

@@ -2,6 +2,7 @@
 // Copyright 2026 The freeform_inspection authors
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -34,10 +35,33 @@ struct ChordError {
   double max = 0.0;                                  ///< [m] largest over the faces
   Eigen::Vector3d max_at = Eigen::Vector3d::Zero();  ///< [m] centroid of that face
   double curved_area_share = 0.0;  ///< share of the area read as facets of a curve
+  /// Per face, q_ij = (n_j − n_i)·(x_j − x_i) of its edges (corners 0–1, 1–2, 2–0) with the
+  /// curve's normals n at its corners x: positive where the curve bulges out of the face
+  /// (convex), negative where it sinks below it; 0 where the face is not a curve's facet.
+  std::vector<std::array<double, 3>> bulge;
+};
+
+/// The curved surface a coarse CAD's faces stand for (chord_error.h) as ICP's target: each
+/// closest point on a face moves out along its normal by `share` × the face's bulge there. A
+/// scan of a real part follows the curve; a scan made from the mesh itself follows the faces
+/// (ICP estimates the share with the pose when asked). Inactive by default: the faces.
+struct CurvedSurface {
+  const ChordError* chord = nullptr;
+  double share = 0.0;     ///< 0: the faces; 1: the curve
+  bool estimate = false;  ///< refinePose() fits the share with the pose (IcpResult::curve_share)
+  bool active() const { return chord != nullptr && share > 0.0; }
 };
 
 /// @brief Estimates the chord error of every face of `mesh` (face normals as the mesh keeps
 /// them, computed when missing). Linear in the faces (a 58k-face blade: a few milliseconds).
 ChordError estimateChordError(const TriangleMesh& mesh);
+
+/// @brief How far the curved surface lies outside face `face` of `mesh` (along its outward
+/// normal) at `point` on the face [m]: ½ Σ λ_i λ_j q_ij over its edges, λ the point's
+/// barycentric coordinates; exact for a quadric surface. 0 when the estimate has no bulges.
+double bulgeAt(const ChordError& error,
+               const TriangleMesh& mesh,
+               int face,
+               const Eigen::Vector3d& point);
 
 }  // namespace freeform_inspection

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "freeform_inspection/chord_error.h"
 #include "freeform_inspection/mesh_query.h"
 #include "freeform_inspection/types.h"
 
@@ -53,6 +54,9 @@ struct IcpResult {
   double inlier_distance = 0.0;  ///< [m] final cut-off
   double rmse = 0.0;             ///< [m] RMS distance of the inliers
   double fitness = 0.0;          ///< share of the used points within inlier_distance
+  /// CurvedSurface::estimate: the share of the curve the scan follows, and its standard error
+  double curve_share = 0.0;
+  double curve_share_error = 0.0;
 
   /// True when T_cad_scan is a refined pose: converged, or stopped at the iteration limit.
   bool usable() const { return status.ok() || status.code == StatusCode::kNotConverged; }
@@ -69,7 +73,8 @@ IcpResult measureFit(const MeshQuery& cad,
                      const Eigen::Isometry3d& pose,
                      double cad_diagonal,
                      const IcpConfig& config,
-                     const Points& scan_normals = Points());
+                     const Points& scan_normals = Points(),
+                     const CurvedSurface& curved = CurvedSurface());
 
 /// A rigid motion that a fit constrains little: the points slide along the surface instead of
 /// leaving it (a prismatic part along its axis, a tube turned about it).
@@ -107,6 +112,27 @@ IcpResult refinePose(const MeshQuery& cad,
                      double initial_cutoff,
                      double cad_diagonal,
                      const IcpConfig& config,
-                     const Points& scan_normals = Points());
+                     const Points& scan_normals = Points(),
+                     const CurvedSurface& curved = CurvedSurface());
+
+/// A least-squares share of the curve in a fit's residuals, and its standard error.
+struct CurveShare {
+  double share = 0.0;
+  double error = 0.0;
+};
+
+/// @brief How much of the bulges of the curve the CAD's faces stand for (chord_error.h) the
+/// signed residuals of `scan_points` at `pose` show, without moving the pose: over the points
+/// within `band` [m] plus the largest bulge of the faces. The pose, fitted to the faces, has taken
+/// up part of the bulges, so a scan of the curve reads below 1 here (a pump cover's views:
+/// 0.28-0.33); a scan made from the mesh itself reads 0. A cheap test of whether ICP should fit
+/// the share with the pose.
+CurveShare curveShareAt(const MeshQuery& cad,
+                        const ChordError& chord,
+                        const Points& scan_points,
+                        const Eigen::Isometry3d& pose,
+                        double band,
+                        const IcpConfig& config,
+                        const Points& scan_normals = Points());
 
 }  // namespace freeform_inspection

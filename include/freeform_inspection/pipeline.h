@@ -135,6 +135,11 @@ struct InspectionResult {
   /// Share of the scan's surface (linked cells) within the inlier distance of the CAD at the
   /// pose: 1 for a right pose on a clean scan, whatever its outliers (surface_support.h).
   double surface_on_cad = std::numeric_limits<double>::quiet_NaN();
+  /// How much of the curve the CAD's faces stand for (chord_error.h) the pose is fitted to: 0
+  /// the faces as they are; 0.5-1 when a low-noise scan shows that it follows the curve a
+  /// coarsely exported CAD cuts (registration.md, "A coarse CAD"). Deviations stay measured
+  /// from the faces.
+  double cad_curve_share = 0.0;
   /// How far the scan's noise leaves the pose free (pose_uncertainty.h); known once the
   /// deviation is measured (registration ok or ambiguous).
   PoseUncertainty pose_uncertainty;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "freeform_inspection/chord_error.h"
 #include "freeform_inspection/mesh_query.h"
 #include "freeform_inspection/surface_graph.h"
 
@@ -23,12 +24,14 @@ namespace freeform_inspection {
 /// `min_links` graph neighbours (the surface; isolated outliers have none), one real scan point
 /// each (a centroid would sit inside a curved surface by its sagitta). 1 when no cell qualifies.
 /// @param scan_points the points the graph's `point_cell` indexes.
+/// @param curved when active, the band is about the curve the CAD's faces stand for.
 double surfaceOnCad(const SurfaceGraph& scan,
                     const Points& scan_points,
                     const MeshQuery& cad,
                     const Eigen::Isometry3d& T_cad_scan,
                     double band,
                     std::size_t count,
-                    int min_links = 3);
+                    int min_links = 3,
+                    const CurvedSurface& curved = CurvedSurface());
 
 }  // namespace freeform_inspection

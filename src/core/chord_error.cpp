@@ -336,6 +336,7 @@ ChordError estimateChordError(const TriangleMesh& mesh) {
   ChordError out;
   const std::size_t faces = mesh.faces.size();
   out.face.assign(faces, 0.0);
+  out.bulge.assign(faces, {0.0, 0.0, 0.0});
   if (faces == 0) {
     return out;
   }
@@ -393,6 +394,7 @@ ChordError estimateChordError(const TriangleMesh& mesh) {
           (corner[f][static_cast<std::size_t>(j)] - corner[f][static_cast<std::size_t>(i)])
               .dot(mesh.vertices[static_cast<std::size_t>(c[j])] -
                    mesh.vertices[static_cast<std::size_t>(c[i])]);
+      out.bulge[f][static_cast<std::size_t>(i)] = q;
       largest = std::max(largest, std::abs(q));
       sum += q;
     }
@@ -407,6 +409,36 @@ ChordError estimateChordError(const TriangleMesh& mesh) {
   }
   out.curved_area_share = area > 0.0 ? curved_area / area : 0.0;
   return out;
+}
+
+double bulgeAt(const ChordError& error,
+               const TriangleMesh& mesh,
+               int face,
+               const Eigen::Vector3d& point) {
+  if (face < 0 || static_cast<std::size_t>(face) >= error.bulge.size() ||
+      static_cast<std::size_t>(face) >= mesh.faces.size()) {
+    return 0.0;
+  }
+  const std::array<double, 3>& q = error.bulge[static_cast<std::size_t>(face)];
+  if (q[0] == 0.0 && q[1] == 0.0 && q[2] == 0.0) {
+    return 0.0;
+  }
+  const Eigen::Vector3i& c = mesh.faces[static_cast<std::size_t>(face)];
+  const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(c[0])];
+  const Eigen::Vector3d ab = mesh.vertices[static_cast<std::size_t>(c[1])] - a;
+  const Eigen::Vector3d ac = mesh.vertices[static_cast<std::size_t>(c[2])] - a;
+  const Eigen::Vector3d ap = point - a;
+  const double d00 = ab.dot(ab);
+  const double d01 = ab.dot(ac);
+  const double d11 = ac.dot(ac);
+  const double denominator = d00 * d11 - d01 * d01;
+  if (!(denominator > 0.0)) {
+    return 0.0;
+  }
+  const double l1 = std::clamp((d11 * ab.dot(ap) - d01 * ac.dot(ap)) / denominator, 0.0, 1.0);
+  const double l2 = std::clamp((d00 * ac.dot(ap) - d01 * ab.dot(ap)) / denominator, 0.0, 1.0);
+  const double l0 = std::max(0.0, 1.0 - l1 - l2);
+  return 0.5 * (l0 * l1 * q[0] + l1 * l2 * q[1] + l2 * l0 * q[2]);
 }
 
 }  // namespace freeform_inspection

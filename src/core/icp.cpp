@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "median_internal.h"
 #include <Eigen/Cholesky>
@@ -30,6 +31,8 @@ struct Pairs {
   std::vector<Eigen::Vector3d> target;  // closest CAD points
   std::vector<Eigen::Vector3d> normal;  // CAD face normals
   std::vector<double> residual;         // signed (plane) or unsigned (point) distance
+  std::vector<int> face;                // the CAD face of each target
+  std::vector<double> bulge;            // the curve's bulge out of that face at the target
 };
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
@@ -55,7 +58,8 @@ Pairs match(const MeshQuery& cad,
             const Eigen::Isometry3d& T,
             double cutoff,
             const IcpConfig& config,
-            std::vector<int>* faces) {
+            std::vector<int>* faces,
+            const CurvedSurface& curved) {
   const Points& points = sample.points;
   Points moved(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -77,13 +81,30 @@ Pairs match(const MeshQuery& cad,
     if (!closest[i].found) {
       continue;
     }
+    // On the curve the face stands for, when asked: its bulge out along the face normal.
+    const double bulge = curved.chord != nullptr
+                             ? bulgeAt(*curved.chord, cad.mesh(), closest[i].face, closest[i].point)
+                             : 0.0;
+    const Eigen::Vector3d target = closest[i].point + curved.share * bulge * closest[i].normal;
     pairs.source.push_back(moved[i]);
-    pairs.target.push_back(closest[i].point);
+    pairs.target.push_back(target);
     pairs.normal.push_back(closest[i].normal);
-    pairs.residual.push_back(point_to_plane ? closest[i].normal.dot(moved[i] - closest[i].point)
-                                            : closest[i].distance);
+    pairs.face.push_back(closest[i].face);
+    pairs.bulge.push_back(bulge);
+    pairs.residual.push_back(point_to_plane ? closest[i].normal.dot(moved[i] - target)
+                                            : (moved[i] - target).norm());
   }
   return pairs;
+}
+
+// A step's turn ω and shift t as a rigid motion.
+Eigen::Isometry3d motionOf(const Eigen::Vector3d& omega, const Eigen::Vector3d& shift) {
+  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+  if (omega.norm() > 0.0 && omega.allFinite()) {
+    step.linear() = Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix();
+  }
+  step.translation() = shift.allFinite() ? shift : Eigen::Vector3d::Zero();
+  return step;
 }
 
 // Linearised point-to-plane step: minimise Σ (n·(p + ω×p + t − q))² over (ω, t).
@@ -97,14 +118,37 @@ Eigen::Isometry3d pointToPlaneStep(const Pairs& pairs) {
     b -= J * pairs.residual[i];
   }
   const Eigen::Matrix<double, 6, 1> x = A.ldlt().solve(b);
-  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
-  const Eigen::Vector3d omega = x.head<3>();
-  if (omega.norm() > 0.0 && omega.allFinite()) {
-    step.linear() = Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix();
+  return motionOf(x.head<3>(), x.tail<3>());
+}
+
+// The same step with the curve's share as a seventh unknown: minimise
+// Σ (n·(p + ω×p + t − q) − Δs·e)² (e: each target's bulge). `share_variance`: the share's
+// variance per unit variance of the residuals, 1 / (A_ss − A_sp A_pp⁺ A_ps) with the pose
+// block's pseudo-inverse, so that a motion the fit leaves free (a round part's turn about its
+// axis) does not make the share look unknown.
+Eigen::Isometry3d pointToCurveStep(const Pairs& pairs, double* share_step, double* share_variance) {
+  Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
+  Eigen::Matrix<double, 7, 1> b = Eigen::Matrix<double, 7, 1>::Zero();
+  for (std::size_t i = 0; i < pairs.source.size(); ++i) {
+    Eigen::Matrix<double, 7, 1> J;
+    J << pairs.source[i].cross(pairs.normal[i]), pairs.normal[i], -pairs.bulge[i];
+    A += J * J.transpose();
+    b -= J * pairs.residual[i];
   }
-  step.translation() =
-      x.tail<3>().allFinite() ? Eigen::Vector3d(x.tail<3>()) : Eigen::Vector3d::Zero();
-  return step;
+  const Eigen::LDLT<Eigen::Matrix<double, 7, 7>> solver(A);
+  const Eigen::Matrix<double, 7, 1> x = solver.solve(b);
+  *share_step = std::isfinite(x[6]) ? x[6] : 0.0;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> pose(A.topLeftCorner<6, 6>());
+  const Eigen::Matrix<double, 6, 1> coupling = pose.eigenvectors().transpose() * A.col(6).head<6>();
+  double held = A(6, 6);
+  const double largest = pose.eigenvalues().maxCoeff();
+  for (int k = 0; k < 6; ++k) {
+    if (pose.eigenvalues()[k] > 1e-9 * largest) {
+      held -= coupling[k] * coupling[k] / pose.eigenvalues()[k];
+    }
+  }
+  *share_variance = held > 0.0 ? 1.0 / held : std::numeric_limits<double>::infinity();
+  return motionOf(x.head<3>(), x.segment<3>(3));
 }
 
 Eigen::Isometry3d pointToPointStep(const Pairs& pairs) {
@@ -156,14 +200,15 @@ IcpResult fitOf(const MeshQuery& cad,
                 const Eigen::Isometry3d& pose,
                 double cad_diagonal,
                 const IcpConfig& config,
-                std::vector<int>* faces) {
+                std::vector<int>* faces,
+                const CurvedSurface& curved) {
   IcpResult result;
   result.T_cad_scan = pose;
   result.converged = true;
   const double floor = config.min_cutoff_ratio * cad_diagonal;
   const double ceiling = config.max_cutoff_ratio * cad_diagonal;
   // Inliers within 3σ (bounded), their RMS.
-  const Pairs pairs = match(cad, sample, pose, ceiling, config, faces);
+  const Pairs pairs = match(cad, sample, pose, ceiling, config, faces, curved);
   std::vector<double> magnitude(pairs.residual.size());
   std::transform(pairs.residual.begin(), pairs.residual.end(), magnitude.begin(), [](double r) {
     return std::abs(r);
@@ -192,14 +237,16 @@ IcpResult measureFit(const MeshQuery& cad,
                      const Eigen::Isometry3d& pose,
                      double cad_diagonal,
                      const IcpConfig& config,
-                     const Points& scan_normals) {
+                     const Points& scan_normals,
+                     const CurvedSurface& curved) {
   std::vector<int> faces;
   return fitOf(cad,
                evenSample(scan_points, scan_normals, config.max_points),
                pose,
                cad_diagonal,
                config,
-               &faces);
+               &faces,
+               curved);
 }
 
 IcpResult refinePose(const MeshQuery& cad,
@@ -208,7 +255,8 @@ IcpResult refinePose(const MeshQuery& cad,
                      double initial_cutoff,
                      double cad_diagonal,
                      const IcpConfig& config,
-                     const Points& scan_normals) {
+                     const Points& scan_normals,
+                     const CurvedSurface& curved) {
   IcpResult result;
   result.T_cad_scan = initial;
   const ScanSample sample = evenSample(scan_points, scan_normals, config.max_points);
@@ -226,9 +274,12 @@ IcpResult refinePose(const MeshQuery& cad,
   for (const Eigen::Vector3d& p : points) {
     reach = std::max(reach, (p - centroid).norm());
   }
-  std::vector<int> faces;  // each point's closest face, where the next search starts
+  std::vector<int> faces;          // each point's closest face, where the next search starts
+  CurvedSurface surface = curved;  // its share moves when estimated
+  const bool estimate = curved.estimate && curved.chord != nullptr && config.point_to_plane;
+  double share_variance = 0.0;
   for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
-    const Pairs pairs = match(cad, sample, result.T_cad_scan, cutoff, config, &faces);
+    const Pairs pairs = match(cad, sample, result.T_cad_scan, cutoff, config, &faces, surface);
     if (pairs.source.size() < 6) {
       result.status =
           Status::failure(StatusCode::kRegistrationFailed,
@@ -240,8 +291,11 @@ IcpResult refinePose(const MeshQuery& cad,
     for (const double r : pairs.residual) {
       mse += r * r / static_cast<double>(pairs.residual.size());
     }
+    double share_step = 0.0;
     const Eigen::Isometry3d step =
-        config.point_to_plane ? pointToPlaneStep(pairs) : pointToPointStep(pairs);
+        estimate ? pointToCurveStep(pairs, &share_step, &share_variance)
+                 : (config.point_to_plane ? pointToPlaneStep(pairs) : pointToPointStep(pairs));
+    surface.share += share_step;
     // No point moves farther than the step moves the centroid plus its turn times the reach.
     const Eigen::Vector3d moved_centroid = result.T_cad_scan * centroid;
     const double largest_move = Eigen::AngleAxisd(step.linear()).angle() * reach +
@@ -255,6 +309,11 @@ IcpResult refinePose(const MeshQuery& cad,
     });
     result.sigma = 1.4826 * internal::median(magnitude);
     cutoff = std::clamp(std::min(cutoff, config.sigma_multiple * result.sigma), floor, ceiling);
+    if (estimate) {
+      // Pairs are not trimmed inside the largest bulge: a cut-off about the current share
+      // would keep the points that side with it, and the share would stay where it started.
+      cutoff = std::max(cutoff, std::min(surface.chord->max, ceiling));
+    }
     // eq. 15 (relative change of the mean squared error), or a step too small to matter. On
     // noise-free data the error keeps halving long after the pose has stopped moving. On a noisy
     // scan the pairs trade faces between iterations and the error jitters by 1e-4 of itself for
@@ -272,7 +331,12 @@ IcpResult refinePose(const MeshQuery& cad,
     }
     previous_mse = mse;
   }
-  const IcpResult fit = fitOf(cad, sample, result.T_cad_scan, cad_diagonal, config, &faces);
+  const IcpResult fit =
+      fitOf(cad, sample, result.T_cad_scan, cad_diagonal, config, &faces, surface);
+  if (estimate) {
+    result.curve_share = surface.share;
+    result.curve_share_error = fit.sigma * std::sqrt(std::max(share_variance, 0.0));
+  }
   result.sigma = fit.sigma;
   result.inlier_distance = fit.inlier_distance;
   result.rmse = fit.rmse;
@@ -283,6 +347,51 @@ IcpResult refinePose(const MeshQuery& cad,
         "ICP did not converge in " + std::to_string(config.max_iterations) + " iterations");
   }
   return result;
+}
+
+CurveShare curveShareAt(const MeshQuery& cad,
+                        const ChordError& chord,
+                        const Points& scan_points,
+                        const Eigen::Isometry3d& pose,
+                        double band,
+                        const IcpConfig& config,
+                        const Points& scan_normals) {
+  CurveShare out;
+  if (!(chord.max > 0.0) || !(band > 0.0) || chord.bulge.size() != cad.mesh().faces.size()) {
+    return out;
+  }
+  std::vector<int> faces;
+  IcpConfig plane = config;
+  plane.point_to_plane = true;  // signed residuals
+  CurvedSurface bulges;
+  bulges.chord = &chord;  // share 0: the faces, with each target's bulge recorded
+  const Pairs pairs = match(cad,
+                            evenSample(scan_points, scan_normals, config.max_points),
+                            pose,
+                            band + chord.max,
+                            plane,
+                            &faces,
+                            bulges);
+  // r = s·e + noise over every pair within the band widened by the largest bulge: a window
+  // that depended on r would lean towards one answer (a band about the faces or about the
+  // curve keeps the noise that sides with it).
+  double re = 0.0;
+  double ee = 0.0;
+  for (std::size_t i = 0; i < pairs.source.size(); ++i) {
+    re += pairs.residual[i] * pairs.bulge[i];
+    ee += pairs.bulge[i] * pairs.bulge[i];
+  }
+  if (!(ee > 0.0) || pairs.source.size() < 6) {
+    return out;
+  }
+  out.share = re / ee;
+  std::vector<double> misfit;
+  misfit.reserve(pairs.source.size());
+  for (std::size_t i = 0; i < pairs.source.size(); ++i) {
+    misfit.push_back(std::abs(pairs.residual[i] - out.share * pairs.bulge[i]));
+  }
+  out.error = 1.4826 * internal::median(std::move(misfit)) / std::sqrt(ee);
+  return out;
 }
 
 Eigen::Isometry3d WeakMotion::by(double distance) const {

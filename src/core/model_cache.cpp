@@ -27,7 +27,7 @@ namespace {
 
 constexpr char kMagic[8] = {'F', 'I', 'M', 'O', 'D', 'E', 'L', 'C'};
 // Bumped when the layout below changes; the package version covers changes of what is computed.
-constexpr std::uint32_t kFormat = 3;
+constexpr std::uint32_t kFormat = 4;
 
 // Appends values to a byte buffer in the machine's own representation (the cache never leaves
 // the machine that wrote it, and the version check refuses another build's file).
@@ -243,6 +243,11 @@ void putPrepared(const ModelCacheEntry& e, Writer* out) {
     out->put(e.chord_error.max_at[k]);
   }
   out->put(e.chord_error.curved_area_share);
+  for (const std::array<double, 3>& bulge : e.chord_error.bulge) {
+    for (const double q : bulge) {
+      out->put(q);
+    }
+  }
 }
 
 void getPrepared(Reader* in, ModelCacheEntry* e) {
@@ -281,6 +286,12 @@ void getPrepared(Reader* in, ModelCacheEntry* e) {
     e->chord_error.max_at[k] = in->get<double>();
   }
   e->chord_error.curved_area_share = in->get<double>();
+  e->chord_error.bulge.resize(e->chord_error.face.size());
+  for (std::size_t f = 0; f < e->chord_error.bulge.size() && in->ok(); ++f) {
+    for (double& q : e->chord_error.bulge[f]) {
+      q = in->get<double>();
+    }
+  }
 }
 
 // Every face indexes a vertex and has its normal, so no later stage indexes past the mesh.

@@ -137,6 +137,17 @@ constexpr double kLeanShare = 0.01;
 // no congruent triplet; with cut balls 18 and registered).
 constexpr double kRetryBallShare = 0.5;
 
+// The pose is fitted to the curve a coarse CAD's faces stand for (chord_error.h) when the
+// residuals of the pose fitted to the faces show at least this share of the curve's bulges,
+// this many standard errors from none (curveShareAt(): 0.3-0.9 for scans of finer meshes of
+// the same part, 0 for scans made from the mesh itself), and ICP, fitting the share with the
+// pose, then finds at least the second share, as far from none.
+constexpr double kCurveShareSeen = 0.2;
+constexpr double kCurveShareFitted = 0.5;
+constexpr double kCurveShareSigmas = 5.0;
+// ... fitted with the pose on this many points: one number more needs no more.
+constexpr std::size_t kCurveSharePoints = 5000;
+
 // A refined candidate pose and how much of the scan it explains.
 struct RefinedPose {
   Eigen::Isometry3d T_cad_scan;
@@ -484,6 +495,8 @@ void registerScan(const Model& model,
   // wall thinner than the noise, the nearest face is often the far side (a bent 2 mm sheet at
   // σ = 1.8 mm: every pose 1 % of L into the sheet, some views turned by 1-2°).
   const Points point_normals = oriented ? scan.pointNormals(scan_points.size()) : Points();
+  // The faces of the CAD, until the scan shows that it follows the curve they stand for.
+  CurvedSurface curved{&model.chordError(), 0.0};
   const auto refine = [&](const Eigen::Isometry3d& initial) {
     IcpResult refined_pose = refinePose(model.query(),
                                         on_surfaces ? surface_points : scan_points,
@@ -491,10 +504,16 @@ void registerScan(const Model& model,
                                         coarse_truncation,
                                         diagonal,
                                         config.icp,
-                                        point_normals);
+                                        point_normals,
+                                        curved);
     if (on_surfaces && refined_pose.usable()) {
-      const IcpResult measured = measureFit(
-          model.query(), scan_points, refined_pose.T_cad_scan, diagonal, config.icp, point_normals);
+      const IcpResult measured = measureFit(model.query(),
+                                            scan_points,
+                                            refined_pose.T_cad_scan,
+                                            diagonal,
+                                            config.icp,
+                                            point_normals,
+                                            curved);
       refined_pose.sigma = measured.sigma;
       refined_pose.inlier_distance = measured.inlier_distance;
       refined_pose.rmse = measured.rmse;
@@ -523,6 +542,43 @@ void registerScan(const Model& model,
     icp = refine(contenders[best].T_cad_scan);
     fine_scores[best] = std::max(fine_scores[best], fineScore(icp.T_cad_scan));
   }
+  // A scan of a real part lies on the curve a coarse CAD's faces stand for, outside them where
+  // the part is convex: fitted to the faces, the pose moves to split the difference (the
+  // blade's platform, 0.6 mm chords: 0.1° and 0.1 % of L off at 0.1 % noise). Where the scan
+  // shows it, the pose is fitted to the curve (chord_error.h).
+  if (icp.usable() && !on_surfaces) {
+    const CurveShare seen = curveShareAt(model.query(),
+                                         model.chordError(),
+                                         scan_points,
+                                         icp.T_cad_scan,
+                                         icp.inlier_distance,
+                                         config.icp,
+                                         point_normals);
+    if (seen.share >= kCurveShareSeen && seen.share >= kCurveShareSigmas * seen.error) {
+      IcpConfig joint_config = config.icp;
+      joint_config.max_points = std::min(joint_config.max_points, kCurveSharePoints);
+      CurvedSurface free = curved;
+      free.estimate = true;
+      const IcpResult joint = refinePose(model.query(),
+                                         scan_points,
+                                         icp.T_cad_scan,
+                                         icp.inlier_distance,
+                                         diagonal,
+                                         joint_config,
+                                         point_normals,
+                                         free);
+      if (joint.usable() && joint.curve_share >= kCurveShareFitted &&
+          joint.curve_share >= kCurveShareSigmas * joint.curve_share_error) {
+        curved.share = std::min(joint.curve_share, 1.0);
+        const IcpResult on_curve = refine(joint.T_cad_scan);
+        if (on_curve.usable()) {
+          icp = on_curve;
+        } else {
+          curved.share = 0.0;
+        }
+      }
+    }
+  }
   // The verification terms of a pose: which cells it explains within 3 σ of the scan's noise.
   const double evidence =
       std::clamp(config.icp.sigma_multiple * result->scan_noise, 0.25 * cell, coarse_truncation);
@@ -538,7 +594,9 @@ void registerScan(const Model& model,
                         model.query(),
                         fit.T_cad_scan,
                         fit.inlier_distance,
-                        config.registration.verification_points);
+                        config.registration.verification_points,
+                        3,
+                        curved);
   };
   double surface_share = icp.usable() ? surfaceShare(icp) : 0.0;
   // A pose that leaves some of the scan's surface off the CAD may be a confusion that neither the
@@ -644,6 +702,7 @@ void registerScan(const Model& model,
   result->fitness = icp.fitness;
   result->inlier_distance = icp.inlier_distance;
   result->noise_sigma = icp.sigma;
+  result->cad_curve_share = curved.share;
   // The share of the scan the pose explains, at a distance that allows for the measured noise.
   const double explained_within =
       std::clamp(config.icp.sigma_multiple * icp.sigma,

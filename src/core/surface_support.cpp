@@ -13,7 +13,8 @@ double surfaceOnCad(const SurfaceGraph& scan,
                     const Eigen::Isometry3d& T_cad_scan,
                     double band,
                     std::size_t count,
-                    int min_links) {
+                    int min_links,
+                    const CurvedSurface& curved) {
   const std::size_t cells = scan.size();
   if (cells == 0 || count == 0 || scan.point_cell.size() != scan_points.size()) {
     return 1.0;
@@ -40,7 +41,17 @@ double surfaceOnCad(const SurfaceGraph& scan,
     }
     surface[u] = 1;
     const Eigen::Vector3d p = T_cad_scan * scan_points[static_cast<std::size_t>(point_of[cell])];
-    on_cad[u] = cad.closest(p, band).found ? 1 : 0;
+    if (!curved.active()) {
+      on_cad[u] = cad.closest(p, band).found ? 1 : 0;
+      continue;
+    }
+    const ClosestPoint closest = cad.closest(p, band + curved.share * curved.chord->max);
+    const double bulge =
+        closest.found
+            ? curved.share * bulgeAt(*curved.chord, cad.mesh(), closest.face, closest.point)
+            : 0.0;
+    on_cad[u] =
+        closest.found && std::abs(closest.normal.dot(p - closest.point) - bulge) <= band ? 1 : 0;
   }
   const auto surface_cells = std::count(surface.begin(), surface.end(), 1);
   const auto supported = std::count(on_cad.begin(), on_cad.end(), 1);

@@ -94,6 +94,8 @@ std::string registrationSection(const InspectionResult& r) {
          tableRow("RMSE (inliers)", {millimetres(r.rmse)}) +
          tableRow("Fitness", {percent(r.fitness)}) + tableRow("Score", {percent(r.score)}) +
          tableRow("Scan surface on the CAD", {percent(r.surface_on_cad)}) +
+         tableRow("Pose fitted to the curve the CAD's faces stand for",
+                  {percent(r.cad_curve_share)}) +
          tableRow("Residual noise (robust sigma)", {millimetres(r.noise_sigma)}) +
          tableRow("Inlier distance", {millimetres(r.inlier_distance)}) +
          tableRow("Pose spread (turn / centroid)", {poseSpreadText(r.pose_uncertainty)}) +

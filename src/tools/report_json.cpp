@@ -152,6 +152,7 @@ nlohmann::ordered_json toJson(const InspectionResult& result) {
   json["inlier_distance"] = numberOrNull(result.inlier_distance);
   json["scan_noise"] = numberOrNull(result.scan_noise);
   json["surface_on_cad"] = numberOrNull(result.surface_on_cad);
+  json["cad_curve_share"] = result.cad_curve_share;
   json["pose_uncertainty"] = poseUncertaintyJson(result.pose_uncertainty);
   json["verdict"] = toString(result.verdict);
   json["verdict_reason"] = result.verdict_reason;

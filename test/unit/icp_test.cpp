@@ -338,6 +338,78 @@ TEST(Icp, PairsWithTheFacesTurnedTheirWayOnAWallThinnerThanTheNoise) {
   EXPECT_EQ(unfiltered.T_cad_scan.matrix(), nearest.T_cad_scan.matrix());
 }
 
+// Half a tube of radius 20 mm cut into 12 flat strips (a CAD exported with 15° facets) and
+// points on the round half tube it stands for, each strip's arc 0.17 mm outside it at its
+// middle (chord_error.h). From the true pose, ICP on the faces moves the points into them along
+// the half's axis of symmetry; ICP that fits the curve's share with the pose finds the whole
+// curve (share 1) and stays. Points on the strips themselves find share 0.
+TEST(Icp, CoarseHalfTubeFitsTheCurveItsStripsStandFor) {
+  const double radius = 0.02;
+  const int strips = 12;
+  TriangleMesh cad;
+  for (int i = 0; i <= 4; ++i) {
+    for (int j = 0; j <= strips; ++j) {
+      const double phi = M_PI * j / strips;
+      cad.vertices.emplace_back(radius * std::cos(phi), radius * std::sin(phi), 0.01 * i - 0.02);
+    }
+  }
+  cad.faces = test::latticeFaces(4, strips + 1, false);
+  cad.face_normals = computeFaceNormals(cad.vertices, cad.faces);
+  if (cad.face_normals.front().y() < 0.0) {  // outward, away from the axis
+    for (Eigen::Vector3i& face : cad.faces) {
+      std::swap(face[1], face[2]);
+    }
+    cad.face_normals = computeFaceNormals(cad.vertices, cad.faces);
+  }
+  const MeshQuery query(cad);
+  const ChordError chord = estimateChordError(cad);
+  std::mt19937 rng(kSeed);
+  std::uniform_real_distribution<double> around(0.02, M_PI - 0.02);
+  std::uniform_real_distribution<double> along(-0.018, 0.018);
+  std::normal_distribution<double> noise(0.0, 2e-5);  // 0.02 mm along the normal
+  Points round;
+  Points flat;
+  for (int k = 0; k < 4000; ++k) {
+    const double phi = around(rng);
+    const Eigen::Vector3d normal(std::cos(phi), std::sin(phi), 0.0);
+    const Eigen::Vector3d on_arc = radius * normal + Eigen::Vector3d(0.0, 0.0, along(rng));
+    round.push_back(on_arc + noise(rng) * normal);
+    // The point of the strip below it, as a scan made from the mesh would have it.
+    const ClosestPoint on_strip = query.closest(on_arc, 0.01);
+    flat.push_back(on_strip.point + noise(rng) * on_strip.normal);
+  }
+  const double diagonal = computeBoundingBox(cad.vertices).diagonal();
+  IcpConfig config;
+  const Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  const IcpResult faces = refinePose(query, round, truth, 0.002, diagonal, config);
+  ASSERT_TRUE(faces.usable());
+  EXPECT_GT(faces.T_cad_scan.translation().head<2>().norm(), 1e-4);  // 0.1 mm into the strips
+
+  CurvedSurface curved;
+  curved.chord = &chord;
+  curved.estimate = true;
+  const IcpResult curve = refinePose(query, round, truth, 0.002, diagonal, config, {}, curved);
+  ASSERT_TRUE(curve.usable());
+  // The strips at the half's two edges have no neighbour beyond: their bulge reads half, and the
+  // share comes out a little over 1. The fit does not hold the turn about the axis or the slide
+  // along it: the pose is judged on its other four motions.
+  EXPECT_NEAR(curve.curve_share, 1.0, 0.15);
+  EXPECT_LT(curve.curve_share_error, 0.02);
+  const auto across = [](const Eigen::Isometry3d& T) { return T.translation().head<2>().norm(); };
+  EXPECT_LT(across(curve.T_cad_scan), 0.25 * across(faces.T_cad_scan));  // 0.023 against 0.146 mm
+  const double tilt =
+      std::acos(std::min(1.0, (curve.T_cad_scan.linear() * Eigen::Vector3d::UnitZ()).z()));
+  EXPECT_LT(tilt * 180.0 / M_PI, 0.05);
+
+  const IcpResult on_strips = refinePose(query, flat, truth, 0.002, diagonal, config, {}, curved);
+  ASSERT_TRUE(on_strips.usable());
+  EXPECT_NEAR(on_strips.curve_share, 0.0, 0.02);
+  EXPECT_LT(on_strips.T_cad_scan.translation().head<2>().norm(), 2e-6);
+  // Read without moving the pose: all of the curve at the true pose, none on the strips.
+  EXPECT_NEAR(curveShareAt(query, chord, round, truth, 0.001, config).share, 1.0, 0.1);
+  EXPECT_NEAR(curveShareAt(query, chord, flat, truth, 0.001, config).share, 0.0, 0.02);
+}
+
 TEST(IcpConfig, ValidationNamesTheField) {
   IcpConfig config;
   EXPECT_TRUE(validate(config).empty());
