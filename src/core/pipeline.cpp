@@ -139,9 +139,10 @@ constexpr double kRetryBallShare = 0.5;
 
 // The pose is fitted to the curve a coarse CAD's faces stand for (chord_error.h) when the
 // residuals of the pose fitted to the faces show at least this share of the curve's bulges,
-// this many standard errors from none (curveShareAt(): 0.3-0.9 for scans of finer meshes of
-// the same part, 0 for scans made from the mesh itself), and ICP, fitting the share with the
-// pose, then finds at least the second share, as far from none.
+// this many standard errors from none (curveShareAt(): 0.28-0.33 for a pump cover's views
+// scanned from its finer mesh, 0 ± 0.05 for scans made from the mesh itself at 0.1 % noise),
+// and ICP, fitting the share with the pose, then finds at least the second share, as far from
+// none (0.89-0.93 for those views; docs/registration.md, "A coarse CAD").
 constexpr double kCurveShareSeen = 0.2;
 constexpr double kCurveShareFitted = 0.5;
 constexpr double kCurveShareSigmas = 5.0;
@@ -545,7 +546,8 @@ void registerScan(const Model& model,
   // A scan of a real part lies on the curve a coarse CAD's faces stand for, outside them where
   // the part is convex: fitted to the faces, the pose moves to split the difference (the
   // blade's platform, 0.6 mm chords: 0.1° and 0.1 % of L off at 0.1 % noise). Where the scan
-  // shows it, the pose is fitted to the curve (chord_error.h).
+  // shows it, the pose is fitted to the curve (chord_error.h). Not on quadric points: they are
+  // a smooth surface whatever the CAD (scans of the mesh itself read 0.4 of the curve there).
   if (icp.usable() && !on_surfaces) {
     const CurveShare seen = curveShareAt(model.query(),
                                          model.chordError(),
@@ -595,7 +597,7 @@ void registerScan(const Model& model,
                         fit.T_cad_scan,
                         fit.inlier_distance,
                         config.registration.verification_points,
-                        3,
+                        /*min_links=*/3,
                         curved);
   };
   double surface_share = icp.usable() ? surfaceShare(icp) : 0.0;
