@@ -8,6 +8,7 @@
 //   registration_eval --cad FILE [--cad-scale S] [--noise R] [--partial] [--outliers F]
 //                     [--points N] [--cases N] [--first-seed N] [--mesh-copy]
 //                     [--camera [--table] [--edge-on DEG]] [--json] [--config YAML]
+//                     [--scan-mesh FILE]
 //
 // --mesh-copy is the paper's §4.5 experiment: the scan is the CAD mesh itself, vertices moved by
 // Gaussian noise along their normals, at a random pose (a mesh scan, faces included).
@@ -15,6 +16,8 @@
 // part on a table that the camera sees around it (the success rule's centroid is the part's
 // points only); --edge-on DEG turns the part so that the optical axis lies within DEG of the
 // plane of its two widest principal axes (a blade or a plate seen nearly edge-on: a narrow strip).
+// --scan-mesh scans another mesh of the same part (same frame and units), e.g. a finer export:
+// the scan then follows the curves the CAD's faces cut, as a real part's does (session 38).
 // Environment: FI_KEEP_GRID keeps a camera view's grid, FI_NO_NORMALS drops the scan's normals,
 // FI_VERBOSE prints every case's status message under its line, FI_DIAG how the pose relates to the
 // truth (printTruthDiagnostics).
