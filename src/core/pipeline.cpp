@@ -148,6 +148,14 @@ constexpr double kCurveShareFitted = 0.5;
 constexpr double kCurveShareSigmas = 5.0;
 // ... fitted with the pose on this many points: one number more needs no more.
 constexpr std::size_t kCurveSharePoints = 5000;
+// A share above this is no curve's: two camera views made from the CAD mesh itself, their
+// faces' fit 1.5 and 3.5 mm off (edges, mixed pixels), read 7.7 and 1.55 at the faces' pose.
+constexpr double kCurveShareMax = 1.5;
+// ... and the curve must explain the scan better than the faces: the residuals' robust σ at
+// most this share of the faces'. Scans of finer meshes: 0.43-0.90 (pump cover, elbow; the
+// blade, whose chord errors sit at its platform's ends, 0.96-0.98 and left on its faces); a
+// camera view of the forearm made from its mesh, whose fit had found a share of 0.8: 0.97.
+constexpr double kCurveSigmaGain = 0.9;
 
 // A refined candidate pose and how much of the scan it explains.
 struct RefinedPose {
@@ -570,10 +578,11 @@ void registerScan(const Model& model,
                                          point_normals,
                                          free);
       if (joint.usable() && joint.curve_share >= kCurveShareFitted &&
+          joint.curve_share <= kCurveShareMax &&
           joint.curve_share >= kCurveShareSigmas * joint.curve_share_error) {
         curved.share = std::min(joint.curve_share, 1.0);
         const IcpResult on_curve = refine(joint.T_cad_scan);
-        if (on_curve.usable()) {
+        if (on_curve.usable() && on_curve.sigma <= kCurveSigmaGain * icp.sigma) {
           icp = on_curve;
         } else {
           curved.share = 0.0;
