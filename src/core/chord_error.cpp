@@ -44,7 +44,7 @@ struct Facets {
   std::vector<int> of_face;  // -1 for faces without a normal
   std::vector<Eigen::Vector3d> normal;
   std::vector<Eigen::Vector3d> centroid;
-  std::vector<std::vector<int>> vertices;
+  std::vector<std::vector<int>> vertices;  // on its border: where its extents are reached
 };
 
 Facets growFacets(const TriangleMesh& mesh,
@@ -64,7 +64,6 @@ Facets growFacets(const TriangleMesh& mesh,
     facets.normal.push_back(n);
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
     double total = 0.0;
-    std::vector<int> vertices;
     facets.of_face[seed] = id;
     queue.assign(1, static_cast<int>(seed));
     while (!queue.empty()) {
@@ -73,7 +72,6 @@ Facets growFacets(const TriangleMesh& mesh,
       const Eigen::Vector3i& corners = mesh.faces[f];
       const double a = triangleArea(mesh.vertices, corners);
       for (int c = 0; c < 3; ++c) {
-        vertices.push_back(corners[c]);
         weighted += a * mesh.vertices[static_cast<std::size_t>(corners[c])] / 3.0;
       }
       total += a;
@@ -91,11 +89,25 @@ Facets growFacets(const TriangleMesh& mesh,
         queue.push_back(other);
       }
     }
-    std::sort(vertices.begin(), vertices.end());
-    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-    facets.vertices.push_back(std::move(vertices));
     facets.centroid.push_back(total > 0.0 ? Eigen::Vector3d(weighted / total)
                                           : mesh.vertices[mesh.faces[seed][0]]);
+  }
+  // A facet's extent in a direction of its plane is reached on its border, so only the border's
+  // vertices are kept: a finely meshed flat plate has a few thousand, not a million.
+  facets.vertices.resize(facets.normal.size());
+  for (const MeshEdge& edge : adjacency.edges) {
+    const int a = facets.of_face[static_cast<std::size_t>(edge.f0)];
+    const int b = edge.f1 >= 0 ? facets.of_face[static_cast<std::size_t>(edge.f1)] : -1;
+    for (const int facet : {a, b}) {
+      if (facet >= 0 && a != b) {
+        facets.vertices[static_cast<std::size_t>(facet)].push_back(edge.v0);
+        facets.vertices[static_cast<std::size_t>(facet)].push_back(edge.v1);
+      }
+    }
+  }
+  for (std::vector<int>& border : facets.vertices) {
+    std::sort(border.begin(), border.end());
+    border.erase(std::unique(border.begin(), border.end()), border.end());
   }
   return facets;
 }
