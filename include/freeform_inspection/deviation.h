@@ -78,6 +78,7 @@ struct DeviationStatistics {
 struct SurfaceDistances {
   std::vector<float> deviation;  ///< [m] signed distance, NaN for unmatched points
   Points normals;                ///< outward CAD normal at the closest point (zero: unmatched)
+  std::vector<int> faces;        ///< CAD face holding the closest point, -1 unmatched
 };
 
 /// @brief Signed distance of every point (already in the CAD frame) to the CAD surface.

@@ -114,12 +114,14 @@ SurfaceDistances measureDeviation(const Model& model,
   SurfaceDistances result;
   result.deviation.assign(points_cad.size(), kUnmatched);
   result.normals.assign(points_cad.size(), Eigen::Vector3d::Zero());
+  result.faces.assign(points_cad.size(), -1);
   for (std::size_t i = 0; i < points_cad.size(); ++i) {
     if (!closest[i].found || pastBorder(model, points_cad[i], closest[i])) {
       continue;
     }
     result.deviation[i] = static_cast<float>(closest[i].signed_distance);
     result.normals[i] = closest[i].normal;
+    result.faces[i] = closest[i].face;
   }
   return result;
 }

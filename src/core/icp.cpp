@@ -31,8 +31,7 @@ struct Pairs {
   std::vector<Eigen::Vector3d> target;  // closest CAD points
   std::vector<Eigen::Vector3d> normal;  // CAD face normals
   std::vector<double> residual;         // signed (plane) or unsigned (point) distance
-  std::vector<int> face;                // the CAD face of each target
-  std::vector<double> bulge;            // the curve's bulge out of that face at the target
+  std::vector<double> bulge;            // the curve's bulge out of the face at the target
 };
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
@@ -81,18 +80,22 @@ Pairs match(const MeshQuery& cad,
     if (!closest[i].found) {
       continue;
     }
-    // On the curve the face stands for, when asked: its bulge out along the face normal.
+    // On the curve the face stands for, when one is given: its bulge out along the face normal
+    // (read only then: it is a barycentric evaluation per pair).
     const double bulge = curved.chord != nullptr
                              ? bulgeAt(*curved.chord, cad.mesh(), closest[i].face, closest[i].point)
                              : 0.0;
-    const Eigen::Vector3d target = closest[i].point + curved.share * bulge * closest[i].normal;
+    const double lift = curved.share * bulge;
+    const Eigen::Vector3d target =
+        lift != 0.0 ? Eigen::Vector3d(closest[i].point + lift * closest[i].normal)
+                    : closest[i].point;
     pairs.source.push_back(moved[i]);
     pairs.target.push_back(target);
     pairs.normal.push_back(closest[i].normal);
-    pairs.face.push_back(closest[i].face);
     pairs.bulge.push_back(bulge);
     pairs.residual.push_back(point_to_plane ? closest[i].normal.dot(moved[i] - target)
-                                            : (moved[i] - target).norm());
+                             : lift != 0.0  ? (moved[i] - target).norm()
+                                            : closest[i].distance);
   }
   return pairs;
 }

@@ -12,7 +12,6 @@
 #include "freeform_inspection/chord_error.h"
 #include "freeform_inspection/defects.h"
 #include "freeform_inspection/deviation.h"
-#include "freeform_inspection/mesh_query.h"
 #include "freeform_inspection/model.h"
 
 namespace freeform_inspection::internal {
@@ -130,27 +129,24 @@ std::string formatLength(double metres) {
 namespace {
 
 // A CAD exported coarsely shows its facets in the deviation map of a good part (chord_error.h).
-// Each defect region gets the chord error of the faces it lies on; the result warns where that
-// error is more than a tenth of the tolerance band (the 10:1 rule for a measuring instrument's
-// resolution) and names the regions it could explain.
+// Each defect region gets the chord error of the faces it lies on (`faces`: each point's, from
+// measureDeviation()); the result warns where that error is more than a tenth of the tolerance
+// band (the 10:1 rule for a measuring instrument's resolution) and names the regions it could
+// explain.
 void noteChordError(const Model& model,
                     const DeviationMap& map,
+                    const std::vector<int>& faces,
                     const PipelineConfig& config,
                     InspectionResult* result) {
   const ChordError& chord = model.chordError();
   if (!(chord.max > 0.0) || chord.face.size() != model.mesh().faces.size()) {
     return;
   }
-  const double reach = config.deviation.max_distance_ratio * model.bounds().diagonal();
   for (std::size_t i = 0; i < map.size(); ++i) {
-    if (map.defect[i] < 0) {
-      continue;
-    }
-    const ClosestPoint closest = model.query().closest(map.points[i], reach);
-    if (closest.found) {
+    if (map.defect[i] >= 0 && faces[i] >= 0) {
       DefectRegion& region = result->defects[static_cast<std::size_t>(map.defect[i])];
       region.cad_chord_error =
-          std::max(region.cad_chord_error, chord.face[static_cast<std::size_t>(closest.face)]);
+          std::max(region.cad_chord_error, chord.face[static_cast<std::size_t>(faces[i])]);
     }
   }
   const double band = std::min(config.tolerance.upper, -config.tolerance.lower);
@@ -218,7 +214,7 @@ void measurePart(const Model& model,
   result->defects = std::move(defects.regions);
   map.defect = std::move(defects.point_region);
   result->conformance = conformanceZones(map, surface, config);
-  noteChordError(model, map, config, result);
+  noteChordError(model, map, distances.faces, config, result);
   result->scan_faces = scan.faces;
   // A band narrower than the residual noise of the fit flags scattered points, not the part.
   const double band = std::min(config.tolerance.upper, -config.tolerance.lower);

@@ -505,8 +505,9 @@ void registerScan(const Model& model,
   // wall thinner than the noise, the nearest face is often the far side (a bent 2 mm sheet at
   // σ = 1.8 mm: every pose 1 % of L into the sheet, some views turned by 1-2°).
   const Points point_normals = oriented ? scan.pointNormals(scan_points.size()) : Points();
-  // The faces of the CAD, until the scan shows that it follows the curve they stand for.
-  CurvedSurface curved{&model.chordError(), 0.0};
+  // The faces of the CAD (no curve, so ICP reads no bulges), until the scan shows that it
+  // follows the curve they stand for.
+  CurvedSurface curved;
   const auto refine = [&](const Eigen::Isometry3d& initial) {
     IcpResult refined_pose = refinePose(model.query(),
                                         on_surfaces ? surface_points : scan_points,
@@ -568,7 +569,8 @@ void registerScan(const Model& model,
                                          share_config,
                                          point_normals);
     if (seen.share >= kCurveShareSeen && seen.share >= kCurveShareSigmas * seen.error) {
-      CurvedSurface free = curved;
+      CurvedSurface free;
+      free.chord = &model.chordError();
       free.estimate = true;
       const IcpResult joint = refinePose(model.query(),
                                          scan_points,
@@ -581,12 +583,13 @@ void registerScan(const Model& model,
       if (joint.usable() && joint.curve_share >= kCurveShareFitted &&
           joint.curve_share <= kCurveShareMax &&
           joint.curve_share >= kCurveShareSigmas * joint.curve_share_error) {
+        curved.chord = &model.chordError();
         curved.share = std::min(joint.curve_share, 1.0);
         const IcpResult on_curve = refine(joint.T_cad_scan);
         if (on_curve.usable() && on_curve.sigma <= kCurveSigmaGain * icp.sigma) {
           icp = on_curve;
         } else {
-          curved.share = 0.0;
+          curved = CurvedSurface();
         }
       }
     }
