@@ -40,6 +40,7 @@ const std::string kBlockAscii =
 const std::string kElbow = std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/elbow_casting.stl";
 const std::string kCoarsePump = std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/pump_cover_fn16.stl";
 const std::string kFinePump = std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/pump_cover_fn64.stl";
+const std::string kForearm = std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/ur10e_forearm.stl";
 const std::string kElbowDouble =
     std::string(FREEFORM_TEST_DATA_DIR) + "/meshes/elbow_casting_double.ply";
 
@@ -1015,6 +1016,47 @@ TEST(Registration, NoisyPartialViewsOfACastLinkToldFromTheirHalfTurns) {
     ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
     EXPECT_LT(error.rotation_deg, 2.0);
     EXPECT_LT(error.centroid_ratio, 0.01);
+  }
+}
+
+// A tube with round ends seen whole at 2 % noise (the UR10e forearm, σ = 14 mm): the view fixes
+// its turn about the tube's axis only weakly, and the quick refinement of the hypotheses stops
+// 10-13° along that turn, where the pose explains the scan about as well as the best (0.997
+// against 0.998). Refined to convergence such a rival comes back onto the best pose (within
+// 1-3°): one pose, not two, so the result is ok (seeds 5 and 9: ambiguous with that rival until
+// 0.9.8). Its half turn, the tube end for end, stays a rival: seed 8 is ambiguous with the twin
+// among its alternatives.
+TEST(Registration, RivalsInTheBestPosesBasinAreNoAlternatives) {
+  static const auto forearm = load(kForearm, 1.0);
+  const double diagonal = forearm->bounds().diagonal();
+  for (const std::uint64_t seed : {5, 9, 8}) {
+    SyntheticScanConfig config = caseConfig(seed, 0.02, false, 0.0);
+    config.points = 30000;
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const SyntheticScan truth = makeCase(*forearm, config);
+    const InspectionResult result = inspect(*forearm, truth.scan, PipelineConfig());
+    const PoseError error = poseError(result, truth, diagonal);
+    std::printf("seed %llu: %s, %.3f deg, %.4f L, %zu alternatives\n",
+                static_cast<unsigned long long>(seed),
+                toString(result.registration),
+                error.rotation_deg,
+                error.centroid_ratio,
+                result.alternatives.size());
+    EXPECT_LT(error.rotation_deg, 2.0);
+    EXPECT_LT(error.centroid_ratio, 0.01);
+    if (seed != 8) {
+      EXPECT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+      continue;
+    }
+    ASSERT_EQ(result.registration, RegistrationStatus::kAmbiguous) << result.status.message;
+    double widest_deg = 0.0;
+    for (const Eigen::Isometry3d& alternative : result.alternatives) {
+      widest_deg = std::max(
+          widest_deg,
+          Eigen::AngleAxisd(alternative.linear().transpose() * result.T_cad_scan.linear()).angle() *
+              180.0 / M_PI);
+    }
+    EXPECT_GT(widest_deg, 170.0);
   }
 }
 
