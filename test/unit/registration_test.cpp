@@ -155,6 +155,28 @@ SyntheticScanConfig caseConfig(std::uint64_t seed, double noise, bool partial, d
   return config;
 }
 
+// One generated case of 30,000 points registered with the defaults, and its pose errors; what
+// came back is printed.
+struct Registered {
+  InspectionResult result;
+  PoseError error;
+};
+
+Registered registerCase(const Model& model, std::uint64_t seed, double noise, bool partial) {
+  SyntheticScanConfig config = caseConfig(seed, noise, partial, 0.0);
+  config.points = 30000;
+  const SyntheticScan truth = makeCase(model, config);
+  Registered out{inspect(model, truth.scan, PipelineConfig()), PoseError()};
+  out.error = poseError(out.result, truth, model.bounds().diagonal());
+  std::printf("seed %llu: %s, %.3f deg, %.4f L, %zu alternatives\n",
+              static_cast<unsigned long long>(seed),
+              toString(out.result.registration),
+              out.error.rotation_deg,
+              out.error.centroid_ratio,
+              out.result.alternatives.size());
+  return out;
+}
+
 // Clutter beside the part that is no plane (a clamp: a block of points), twice the part's points:
 // no pose explains the scan; input.crop_box, set around where the part lies in the scan's frame
 // (as a fixed scanner's integrator sets it once), takes it away and the part registers.
@@ -469,21 +491,11 @@ TEST(Registration, RetriesGoOnFromThePoseTheyFound) {
 // confident wrong pose. The other two views stay right.
 TEST(Registration, AViewOfABendIsNeverAConfidentPoseTurnedAlongIt) {
   static const auto elbow = load(kElbow, 1.0);
-  const double diagonal = elbow->bounds().diagonal();
   int right = 0;
   for (const std::uint64_t seed : {1, 2, 3}) {
-    SyntheticScanConfig config = caseConfig(seed, 0.02, true, 0.0);
-    config.points = 30000;
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const SyntheticScan truth = makeCase(*elbow, config);
-    const InspectionResult result = inspect(*elbow, truth.scan, PipelineConfig());
-    const PoseError error = poseError(result, truth, diagonal);
+    const auto [result, error] = registerCase(*elbow, seed, 0.02, true);
     const bool is_right = error.rotation_deg < 2.0 && error.centroid_ratio < 0.01;
-    std::printf("seed %llu: %s, %.3f deg, %.4f L\n",
-                static_cast<unsigned long long>(seed),
-                toString(result.registration),
-                error.rotation_deg,
-                error.centroid_ratio);
     EXPECT_NE(result.registration, RegistrationStatus::kFailed) << result.status.message;
     if (result.registration == RegistrationStatus::kOk) {
       EXPECT_TRUE(is_right) << "a wrong pose reported ok";
@@ -999,20 +1011,9 @@ TEST(Registration, VerificationSetAtTheMeanOfItsPointsFittedPositions) {
 // came back ambiguous. On the cells' fitted positions the right pose is told apart
 // (registration.md, "Rivals weighed on the fitted surfaces"). Before, 1 of these 3 was ok.
 TEST(Registration, NoisyPartialViewsOfACastLinkToldFromTheirHalfTurns) {
-  const double diagonal = link().bounds().diagonal();
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    SyntheticScanConfig config = caseConfig(seed, 0.02, true, 0.0);
-    config.points = 30000;
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const SyntheticScan truth = makeCase(link(), config);
-    const InspectionResult result = inspect(link(), truth.scan, PipelineConfig());
-    const PoseError error = poseError(result, truth, diagonal);
-    std::printf("seed %llu: %s, %.3f deg, %.4f L, %zu alternatives\n",
-                static_cast<unsigned long long>(seed),
-                toString(result.registration),
-                error.rotation_deg,
-                error.centroid_ratio,
-                result.alternatives.size());
+    const auto [result, error] = registerCase(link(), seed, 0.02, true);
     ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
     EXPECT_LT(error.rotation_deg, 2.0);
     EXPECT_LT(error.centroid_ratio, 0.01);
@@ -1028,20 +1029,9 @@ TEST(Registration, NoisyPartialViewsOfACastLinkToldFromTheirHalfTurns) {
 // among its alternatives.
 TEST(Registration, RivalsInTheBestPosesBasinAreNoAlternatives) {
   static const auto forearm = load(kForearm, 1.0);
-  const double diagonal = forearm->bounds().diagonal();
   for (const std::uint64_t seed : {5, 9, 8}) {
-    SyntheticScanConfig config = caseConfig(seed, 0.02, false, 0.0);
-    config.points = 30000;
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const SyntheticScan truth = makeCase(*forearm, config);
-    const InspectionResult result = inspect(*forearm, truth.scan, PipelineConfig());
-    const PoseError error = poseError(result, truth, diagonal);
-    std::printf("seed %llu: %s, %.3f deg, %.4f L, %zu alternatives\n",
-                static_cast<unsigned long long>(seed),
-                toString(result.registration),
-                error.rotation_deg,
-                error.centroid_ratio,
-                result.alternatives.size());
+    const auto [result, error] = registerCase(*forearm, seed, 0.02, false);
     EXPECT_LT(error.rotation_deg, 2.0);
     EXPECT_LT(error.centroid_ratio, 0.01);
     if (seed != 8) {
