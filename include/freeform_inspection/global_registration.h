@@ -149,6 +149,24 @@ bool separatePoses(const Eigen::Isometry3d& a,
                    const Eigen::Vector3d& reference,
                    double cell_size);
 
+/// @brief How far apart `a` and `b` are in units of that separation: the larger of their relative
+/// turn over 10° and the shift of `reference` over 3 cells (above 1 where separatePoses()).
+double poseGap(const Eigen::Isometry3d& a,
+               const Eigen::Isometry3d& b,
+               const Eigen::Vector3d& reference,
+               double cell_size);
+
+/// @brief Whether a rival pose found at `found`, which refinement moved to `refined`, came onto
+/// `best`: within the separation of distinct poses of it (poseGap() ≤ 1) and with at least `share`
+/// of its gap to it closed, so that a rival found just beyond the separation and barely moved is
+/// not taken for the best's own.
+bool refinedOnto(const Eigen::Isometry3d& best,
+                 const Eigen::Isometry3d& found,
+                 const Eigen::Isometry3d& refined,
+                 const Eigen::Vector3d& reference,
+                 double cell_size,
+                 double share);
+
 /// @brief Features whose centre, moved by the pose, lies within `tolerance` [m] of one of their
 /// CAD candidates: the correspondences the pose confirms.
 int countExplainedFeatures(const Eigen::Isometry3d& T_cad_scan,

@@ -450,6 +450,25 @@ bool separatePoses(const Eigen::Isometry3d& a,
   return distinctPoses(a, b, reference, 10.0, 3.0 * cell_size);
 }
 
+double poseGap(const Eigen::Isometry3d& a,
+               const Eigen::Isometry3d& b,
+               const Eigen::Vector3d& reference,
+               double cell_size) {
+  const Eigen::AngleAxisd relative(a.linear().transpose() * b.linear());
+  return std::max(std::abs(relative.angle()) / (10.0 * kDegree),
+                  (a * reference - b * reference).norm() / (3.0 * cell_size));
+}
+
+bool refinedOnto(const Eigen::Isometry3d& best,
+                 const Eigen::Isometry3d& found,
+                 const Eigen::Isometry3d& refined,
+                 const Eigen::Vector3d& reference,
+                 double cell_size,
+                 double share) {
+  const double left = poseGap(best, refined, reference, cell_size);
+  return left <= 1.0 && left <= (1.0 - share) * poseGap(best, found, reference, cell_size);
+}
+
 GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
                                           const SurfaceGraph& cad,
                                           const CorrespondenceResult& candidates,

@@ -158,6 +158,13 @@ constexpr double kCurveShareMax = 1.5;
 // camera view of the forearm made from its mesh, whose fit had found a share of 0.8: 0.97.
 constexpr double kCurveSigmaGain = 0.9;
 
+// A rival that refinement brings within the separation of distinct poses of the best is the
+// best's own (an alternative no more) when it also closed at least this share of its gap to it
+// (registerScan; in the table at 2 % noise and the pump cover's views the rivals so merged had
+// closed 68-96 % of theirs and landed within 0.4 of the separation, the rivals kept at most 20 %,
+// staying 2.8 or more apart).
+constexpr double kBasinShare = 0.5;
+
 // A refined candidate pose and how much of the scan it explains.
 struct RefinedPose {
   Eigen::Isometry3d T_cad_scan;
@@ -877,20 +884,26 @@ void registerScan(const Model& model,
     // quick refinement had only stopped partway along a motion the view fixes weakly (a UR10e
     // forearm at 2 % noise, its full views' rivals 10-13° about the tube's axis: refined, they
     // land within 0.9-2.6° of the best; docs/registration.md, "Rivals in the best pose's basin").
-    const bool apart =
-        !rival.usable() || separatePoses(result->T_cad_scan, rival.T_cad_scan, reference, cell);
+    // Onto the best means within the separation of distinct poses, and at least halfway there
+    // from where the rival started: one found just beyond 10° that refinement barely moved has
+    // not shown that it belongs to the best.
+    const bool onto_best =
+        rival.usable() &&
+        refinedOnto(
+            result->T_cad_scan, found.T_cad_scan, rival.T_cad_scan, reference, cell, kBasinShare);
     // First the rival as the quick refinement on the verification cells left it. If the scan
     // does not side with the best even then, refining it to convergence, which lets the rival
     // explain more, would not change that: it stays a rival, unless it was the best's.
     if (!sidesWithBest(found.T_cad_scan)) {
-      if (apart) {
+      if (!onto_best) {
         addAlternative(found.T_cad_scan);
       }
       continue;
     }
     // The scan sides against the rival as found; it stays beaten unless its refinement, landing
     // apart from the best, explains the scan as well; brought onto the best, it stays beaten.
-    if (rival.usable() && apart && !sidesWithBest(rival.T_cad_scan)) {
+    if (rival.usable() && separatePoses(result->T_cad_scan, rival.T_cad_scan, reference, cell) &&
+        !sidesWithBest(rival.T_cad_scan)) {
       addAlternative(rival.T_cad_scan);
     }
   }

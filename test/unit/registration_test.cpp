@@ -1134,6 +1134,21 @@ TEST(Registration, PosesAreListedApartBeyondTenDegreesOrThreeCells) {
   EXPECT_FALSE(separatePoses(pose, shifted(2.9), reference, cell));
   EXPECT_TRUE(separatePoses(pose, shifted(3.1), reference, cell));
   EXPECT_FALSE(separatePoses(pose, pose, reference, cell));
+  // poseGap() counts in those units: the larger of turn / 10° and shift / 3 cells.
+  EXPECT_NEAR(poseGap(pose, turned(5.0), reference, cell), 0.5, 1e-9);
+  EXPECT_NEAR(poseGap(turned(-25.0), pose, reference, cell), 2.5, 1e-9);
+  EXPECT_NEAR(poseGap(pose, shifted(1.5), reference, cell), 0.5, 1e-9);
+  const Eigen::Isometry3d both = Eigen::Translation3d(0.0, 1.5 * cell, 0.0) * turned(20.0);
+  EXPECT_NEAR(poseGap(pose, both, reference, cell), 2.0, 1e-9);
+  EXPECT_EQ(poseGap(pose, pose, reference, cell), 0.0);
+  // A rival comes onto the best when refinement brings it within that separation and closes at
+  // least the given share of its gap: 12° → 1° yes; 10.5° → 9.5° (on the line, barely moved) and
+  // 12° → 7° (within 10°, but 42 % of the way) no; 25° → 12° never (still apart).
+  EXPECT_TRUE(refinedOnto(pose, turned(12.0), turned(1.0), reference, cell, 0.5));
+  EXPECT_FALSE(refinedOnto(pose, turned(10.5), turned(9.5), reference, cell, 0.5));
+  EXPECT_FALSE(refinedOnto(pose, turned(12.0), turned(7.0), reference, cell, 0.5));
+  EXPECT_TRUE(refinedOnto(pose, turned(12.0), turned(5.0), reference, cell, 0.5));
+  EXPECT_FALSE(refinedOnto(pose, turned(25.0), turned(12.0), reference, cell, 0.5));
 }
 
 TEST(Registration, NearSymmetricFlangeIsToldApartWhenTheScanShowsTheDifference) {
