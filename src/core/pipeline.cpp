@@ -162,7 +162,7 @@ constexpr double kCurveSigmaGain = 0.9;
 // best's own (an alternative no more) when it also closed at least this share of its gap to it
 // (registerScan; in the table at 2 % noise and the pump cover's views the rivals so merged had
 // closed 68-96 % of theirs and landed within 0.4 of the separation, the rivals kept at most 20 %,
-// staying 2.8 or more apart).
+// staying 1.6 or more apart).
 constexpr double kBasinShare = 0.5;
 
 // A refined candidate pose and how much of the scan it explains.
