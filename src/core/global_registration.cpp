@@ -433,30 +433,44 @@ bool scanLeans(const std::vector<double>& a,
   return only_a >= min_share * count && leans(only_a, only_b, sigmas);
 }
 
+namespace {
+
+// The separation of poses a result lists apart (separatePoses, poseGap).
+constexpr double kSeparateDeg = 10.0;
+constexpr double kSeparateCells = 3.0;
+
+// How far `b` lies from `a`: the angle of their relative turn [rad] and the shift of `reference`.
+std::pair<double, double> poseDifference(const Eigen::Isometry3d& a,
+                                         const Eigen::Isometry3d& b,
+                                         const Eigen::Vector3d& reference) {
+  const Eigen::AngleAxisd relative(a.linear().transpose() * b.linear());
+  return {std::abs(relative.angle()), (a * reference - b * reference).norm()};
+}
+
+}  // namespace
+
 bool distinctPoses(const Eigen::Isometry3d& a,
                    const Eigen::Isometry3d& b,
                    const Eigen::Vector3d& reference,
                    double angle_deg,
                    double distance) {
-  const Eigen::AngleAxisd relative(a.linear().transpose() * b.linear());
-  return std::abs(relative.angle()) > angle_deg * kDegree ||
-         (a * reference - b * reference).norm() > distance;
+  const auto [angle, shift] = poseDifference(a, b, reference);
+  return angle > angle_deg * kDegree || shift > distance;
 }
 
 bool separatePoses(const Eigen::Isometry3d& a,
                    const Eigen::Isometry3d& b,
                    const Eigen::Vector3d& reference,
                    double cell_size) {
-  return distinctPoses(a, b, reference, 10.0, 3.0 * cell_size);
+  return distinctPoses(a, b, reference, kSeparateDeg, kSeparateCells * cell_size);
 }
 
 double poseGap(const Eigen::Isometry3d& a,
                const Eigen::Isometry3d& b,
                const Eigen::Vector3d& reference,
                double cell_size) {
-  const Eigen::AngleAxisd relative(a.linear().transpose() * b.linear());
-  return std::max(std::abs(relative.angle()) / (10.0 * kDegree),
-                  (a * reference - b * reference).norm() / (3.0 * cell_size));
+  const auto [angle, shift] = poseDifference(a, b, reference);
+  return std::max(angle / (kSeparateDeg * kDegree), shift / (kSeparateCells * cell_size));
 }
 
 bool refinedOnto(const Eigen::Isometry3d& best,
