@@ -82,10 +82,15 @@ double shareOnCad(const fi::Model& model,
 // FI_DIAG: how the reported pose relates to the truth. The share of the scan each explains
 // within `reach`, the motion truth·result⁻¹, and every model symmetry S with how far S·result
 // lands from the truth: a wrong pose whose twin is the truth shows as one row near 0°, 0 m.
+// Then where the pipeline's own ICP lands when it starts at the truth (inspectFrom), measured
+// like the success rule (turn, and the shift of the scan's centroid): a miss whose refinement
+// from the truth also ends 2° or 1 % of L away is beyond the search's reach.
 void printTruthDiagnostics(const fi::Model& model,
                            const fi::Scan& scan,
                            const Eigen::Isometry3d& truth,
                            const fi::InspectionResult& result,
+                           const fi::PipelineConfig& config,
+                           const Eigen::Vector3d& centroid,
                            double reach) {
   constexpr double kDeg = 180.0 / 3.14159265358979323846;
   const Eigen::Isometry3d& found = result.T_cad_scan;
@@ -115,6 +120,12 @@ void printTruthDiagnostics(const fi::Model& model,
                 fi::bench::rotationErrorDeg(alternative, truth),
                 shareOnCad(model, scan.points, alternative, reach));
   }
+  const fi::InspectionResult from_truth = fi::inspectFrom(model, scan, truth, config);
+  std::printf("    ICP from the truth: %s, %.2f deg and %.4f %%L from it\n",
+              fi::toString(from_truth.registration),
+              fi::bench::rotationErrorDeg(from_truth.T_cad_scan, truth),
+              100.0 * (from_truth.T_cad_scan * centroid - truth * centroid).norm() /
+                  model.bounds().diagonal());
 }
 
 // The CAD mesh with noise of σ along the area-weighted vertex normals, moved like `generated`.
@@ -413,7 +424,13 @@ int main(int argc, char** argv) {
           seconds,
           !right && is_ok ? "  <-- WRONG POSE REPORTED OK" : "");
       if (std::getenv("FI_DIAG") != nullptr) {
-        printTruthDiagnostics(model, scan, truth, result, 3.0 * config.noise_ratio * diagonal);
+        printTruthDiagnostics(model,
+                              scan,
+                              truth,
+                              result,
+                              pipeline_config,
+                              centroid,
+                              3.0 * config.noise_ratio * diagonal);
       }
       if (std::getenv("FI_VERBOSE") != nullptr) {
         std::printf("    %s\n   ", result.status.message.c_str());

@@ -169,4 +169,18 @@ InspectionResult inspect(const Model& model,
                          const PipelineConfig& config,
                          const ProgressCallback& progress = {});
 
+/// @brief inspect() for a scan whose pose is known roughly (the fixture's nominal pose, a pose
+/// the robot's kinematics give): no features, correspondences or global search; ICP starts
+/// from `initial_T_cad_scan` (scan → CAD) and the pose must pass the same checks that it
+/// explains the scan. ICP's first cut-off is registration.verification_distance_cells cells,
+/// so the guess must put the scan within about that of the CAD surface. No rival poses are
+/// sought: a symmetric part's twin is not reported `ambiguous` here.
+/// @return as inspect(); status kInvalidInput when the initial pose is not a finite rigid
+/// transform.
+InspectionResult inspectFrom(const Model& model,
+                             const Scan& scan,
+                             const Eigen::Isometry3d& initial_T_cad_scan,
+                             const PipelineConfig& config,
+                             const ProgressCallback& progress = {});
+
 }  // namespace freeform_inspection

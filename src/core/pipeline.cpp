@@ -381,6 +381,96 @@ ProbeStarts probesAroundRivals(const Model& model,
 // Features → candidates → triplets → verification → ICP. Fills the registration fields of
 // `result`; the status says why when no pose could be trusted.
 // `oriented`: the scan's normals point out of the material (see VerificationSet).
+// ICP of the scan from `initial`: on the fitted surfaces' points when the curvature fit grew
+// (`surface_points` not empty; the fit's numbers are then measured on the scan's own points),
+// each point paired with faces turned its way where `point_normals` are given.
+IcpResult refineOnScan(const Model& model,
+                       const Points& scan_points,
+                       const Points& surface_points,
+                       const Points& point_normals,
+                       const Eigen::Isometry3d& initial,
+                       double initial_cutoff,
+                       const IcpConfig& config,
+                       const CurvedSurface& curved) {
+  const bool on_surfaces = !surface_points.empty();
+  const double diagonal = model.bounds().diagonal();
+  IcpResult refined = refinePose(model.query(),
+                                 on_surfaces ? surface_points : scan_points,
+                                 initial,
+                                 initial_cutoff,
+                                 diagonal,
+                                 config,
+                                 point_normals,
+                                 curved);
+  if (on_surfaces && refined.usable()) {
+    const IcpResult measured = measureFit(
+        model.query(), scan_points, refined.T_cad_scan, diagonal, config, point_normals, curved);
+    refined.sigma = measured.sigma;
+    refined.inlier_distance = measured.inlier_distance;
+    refined.rmse = measured.rmse;
+    refined.fitness = measured.fitness;
+  }
+  return refined;
+}
+
+// Takes the refined pose into the result and checks that it explains the scan: the verification
+// cells within 3 σ of the residual, ICP's fitness, the share of the scan's surface on the CAD, a
+// residual not stretched far past the scan's own noise. False, with status kRegistrationFailed
+// and the identity pose (the rejected fit's numbers kept for the message), when it does not.
+bool acceptPose(const Model& model,
+                const VerificationSet& set,
+                const IcpResult& icp,
+                double surface_share,
+                double coarse_truncation,
+                const CurvedSurface& curved,
+                const PipelineConfig& config,
+                InspectionResult* result) {
+  const double diagonal = model.bounds().diagonal();
+  if (!icp.converged) {
+    result->warnings.push_back(icp.status.message);
+  }
+  result->T_cad_scan = icp.T_cad_scan;
+  result->rmse = icp.rmse;
+  result->fitness = icp.fitness;
+  result->inlier_distance = icp.inlier_distance;
+  result->noise_sigma = icp.sigma;
+  result->cad_curve_share = curved.share;
+  // The share of the scan the pose explains, at a distance that allows for the measured noise.
+  const double explained_within =
+      std::clamp(config.icp.sigma_multiple * icp.sigma,
+                 coarse_truncation,
+                 std::max(coarse_truncation, config.icp.max_cutoff_ratio * diagonal));
+  result->score = verificationScore(icp.T_cad_scan,
+                                    set,
+                                    model.query(),
+                                    explained_within,
+                                    config.registration.normal_tolerance_deg);
+  result->surface_on_cad = surface_share;
+  const double noise_floor = std::max(result->scan_noise, 1e-3 * diagonal);
+  const bool stretched = icp.sigma > config.registration.max_residual_ratio * noise_floor &&
+                         icp.fitness < config.registration.residual_fitness;
+  if (result->score >= config.registration.min_score &&
+      result->fitness >= config.registration.min_fitness && !stretched &&
+      result->surface_on_cad >= config.registration.min_surface_on_cad) {
+    return true;
+  }
+  result->status = Status::failure(
+      StatusCode::kRegistrationFailed,
+      "no pose explains the scan: best pose explains " + std::to_string(result->score) +
+          " of it (registration.min_score " + std::to_string(config.registration.min_score) +
+          "), ICP fitness " + std::to_string(result->fitness) + " (registration.min_fitness " +
+          std::to_string(config.registration.min_fitness) + "), " +
+          std::to_string(result->surface_on_cad) +
+          " of the scan's surface on the CAD (registration.min_surface_on_cad " +
+          std::to_string(config.registration.min_surface_on_cad) + "), residual " +
+          formatLength(icp.sigma) + " for a scan noise of " + formatLength(result->scan_noise) +
+          " (registration.max_residual_ratio " +
+          std::to_string(config.registration.max_residual_ratio) + ")");
+  result->T_cad_scan = Eigen::Isometry3d::Identity();
+  result->rmse = std::numeric_limits<double>::quiet_NaN();
+  return false;
+}
+
 void registerScan(const Model& model,
                   const Points& scan_points,
                   const DescriptorResult& scan,
@@ -516,28 +606,14 @@ void registerScan(const Model& model,
   // follows the curve they stand for.
   CurvedSurface curved;
   const auto refine = [&](const Eigen::Isometry3d& initial) {
-    IcpResult refined_pose = refinePose(model.query(),
-                                        on_surfaces ? surface_points : scan_points,
-                                        initial,
-                                        coarse_truncation,
-                                        diagonal,
-                                        config.icp,
-                                        point_normals,
-                                        curved);
-    if (on_surfaces && refined_pose.usable()) {
-      const IcpResult measured = measureFit(model.query(),
-                                            scan_points,
-                                            refined_pose.T_cad_scan,
-                                            diagonal,
-                                            config.icp,
-                                            point_normals,
-                                            curved);
-      refined_pose.sigma = measured.sigma;
-      refined_pose.inlier_distance = measured.inlier_distance;
-      refined_pose.rmse = measured.rmse;
-      refined_pose.fitness = measured.fitness;
-    }
-    return refined_pose;
+    return refineOnScan(model,
+                        scan_points,
+                        surface_points,
+                        point_normals,
+                        initial,
+                        coarse_truncation,
+                        config.icp,
+                        curved);
   };
   IcpResult icp = refine(contenders.front().T_cad_scan);
   // The contenders are ranked again with a truncation matched to the measured residual (3σ):
@@ -716,25 +792,6 @@ void registerScan(const Model& model,
   if (!watch.proceed("verification", 0.8)) {
     return;
   }
-  if (!icp.converged) {
-    result->warnings.push_back(icp.status.message);
-  }
-  result->T_cad_scan = icp.T_cad_scan;
-  result->rmse = icp.rmse;
-  result->fitness = icp.fitness;
-  result->inlier_distance = icp.inlier_distance;
-  result->noise_sigma = icp.sigma;
-  result->cad_curve_share = curved.share;
-  // The share of the scan the pose explains, at a distance that allows for the measured noise.
-  const double explained_within =
-      std::clamp(config.icp.sigma_multiple * icp.sigma,
-                 coarse_truncation,
-                 std::max(coarse_truncation, config.icp.max_cutoff_ratio * diagonal));
-  result->score = verificationScore(icp.T_cad_scan,
-                                    set,
-                                    model.query(),
-                                    explained_within,
-                                    config.registration.normal_tolerance_deg);
   std::size_t explained = 0;
   for (const CorrespondenceResult& sign : candidates) {
     explained = std::max(explained,
@@ -746,30 +803,7 @@ void registerScan(const Model& model,
                              config.registration.pair_tolerance_cells * cell)));
   }
   result->counts.correspondences = explained;
-
-  result->surface_on_cad = surface_share;
-  const double noise_floor = std::max(result->scan_noise, 1e-3 * diagonal);
-  const bool stretched = icp.sigma > config.registration.max_residual_ratio * noise_floor &&
-                         icp.fitness < config.registration.residual_fitness;
-  if (result->score < config.registration.min_score ||
-      result->fitness < config.registration.min_fitness || stretched ||
-      result->surface_on_cad < config.registration.min_surface_on_cad) {
-    result->status = Status::failure(
-        StatusCode::kRegistrationFailed,
-        "no pose explains the scan: best pose explains " + std::to_string(result->score) +
-            " of it (registration.min_score " + std::to_string(config.registration.min_score) +
-            "), ICP fitness " + std::to_string(result->fitness) + " (registration.min_fitness " +
-            std::to_string(config.registration.min_fitness) + "), " +
-            std::to_string(result->surface_on_cad) +
-            " of the scan's surface on the CAD (registration.min_surface_on_cad " +
-            std::to_string(config.registration.min_surface_on_cad) + "), residual " +
-            formatLength(icp.sigma) + " for a scan noise of " + formatLength(result->scan_noise) +
-            " (registration.max_residual_ratio " +
-            std::to_string(config.registration.max_residual_ratio) + ")");
-    // No pose to use: the contract's identity, with the rejected fit's numbers kept for the
-    // message and diagnostics.
-    result->T_cad_scan = Eigen::Isometry3d::Identity();
-    result->rmse = std::numeric_limits<double>::quiet_NaN();
+  if (!acceptPose(model, set, icp, surface_share, coarse_truncation, curved, config, result)) {
     watch.lap("verification");
     return;
   }
@@ -947,6 +981,62 @@ void addTimings(const std::vector<StageTiming>& extra, std::vector<StageTiming>*
   }
 }
 
+// The registration of a scan whose pose is known roughly (inspectFrom): ICP from `initial` as
+// the global stage's best pose is refined, and the same checks that the pose explains the scan.
+// No search, so no rivals: a pose the scan would not tell from a symmetric twin is the caller's.
+void registerFrom(const Model& model,
+                  const Points& scan_points,
+                  const DescriptorResult& scan,
+                  bool oriented,
+                  const Eigen::Isometry3d& initial,
+                  const PipelineConfig& config,
+                  const ProgressCallback& progress,
+                  InspectionResult* result) {
+  Stopwatch watch{result, &progress};
+  if (!watch.proceed("icp", 0.75)) {
+    return;
+  }
+  const double coarse_truncation =
+      config.registration.verification_distance_cells * model.cellSize();
+  const CurvedSurface faces;
+  const IcpResult icp = refineOnScan(model,
+                                     scan_points,
+                                     scan.onFittedSurfaces(scan_points),
+                                     oriented ? scan.pointNormals(scan_points.size()) : Points(),
+                                     initial,
+                                     coarse_truncation,
+                                     config.icp,
+                                     faces);
+  watch.lap("icp");
+  if (!icp.usable()) {
+    result->status = icp.status;
+    return;
+  }
+  if (!watch.proceed("verification", 0.8)) {
+    return;
+  }
+  const VerificationSet set =
+      makeVerificationSet(scan.graph, config.registration.verification_points, oriented);
+  const double surface_share = surfaceOnCad(scan.graph,
+                                            scan_points,
+                                            model.query(),
+                                            icp.T_cad_scan,
+                                            icp.inlier_distance,
+                                            config.registration.verification_points,
+                                            /*min_links=*/3,
+                                            faces);
+  const bool accepted =
+      acceptPose(model, set, icp, surface_share, coarse_truncation, faces, config, result);
+  watch.lap("verification");
+  if (!accepted) {
+    return;
+  }
+  result->registration = RegistrationStatus::kOk;
+  result->status = Status::success();
+  result->status.message = "refined from the given pose: RMS " + formatLength(result->rmse) +
+                           ", fitness " + std::to_string(result->fitness);
+}
+
 // registerScan(), and when no pose explained the scan, once more with `retry_candidates` per
 // feature, and where the features were few, with features whose r_max ball is cut down to half
 // the usual share: on a partial or noisy scan a feature's true place can rank below the first
@@ -1007,6 +1097,7 @@ void registerWidening(const Model& model,
 // or that the caller cancels.
 void runStages(const Model& model,
                const Scan& scan,
+               const Eigen::Isometry3d* initial,
                const PipelineConfig& config,
                const ProgressCallback& progress,
                Stopwatch* watch,
@@ -1077,7 +1168,12 @@ void runStages(const Model& model,
   // A scanner's normals, a delivered mesh's winding and a range image's view point out of
   // the material; normals this pipeline estimated otherwise may not.
   const bool oriented = !scan.normals.empty() || !scan.faces.empty() || !hints.normals.empty();
-  registerWidening(model, cleaned.scan.points, descriptors, oriented, config, progress, result);
+  if (initial != nullptr) {
+    registerFrom(
+        model, cleaned.scan.points, descriptors, oriented, *initial, config, progress, result);
+  } else {
+    registerWidening(model, cleaned.scan.points, descriptors, oriented, config, progress, result);
+  }
   if (result->registration == RegistrationStatus::kFailed || !watch->proceed("deviation", 0.9)) {
     return;
   }
@@ -1166,10 +1262,21 @@ std::vector<std::string> validate(const PipelineConfig& config) {
   return errors;
 }
 
-InspectionResult inspect(const Model& model,
-                         const Scan& scan,
-                         const PipelineConfig& config,
-                         const ProgressCallback& progress) {
+namespace {
+
+// A rotation and a translation, finite: what a caller's initial pose must be.
+bool isRigid(const Eigen::Isometry3d& pose) {
+  const Eigen::Matrix3d R = pose.linear();
+  return pose.matrix().allFinite() &&
+         (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 &&
+         R.determinant() > 0.0;
+}
+
+InspectionResult run(const Model& model,
+                     const Scan& scan,
+                     const Eigen::Isometry3d* initial,
+                     const PipelineConfig& config,
+                     const ProgressCallback& progress) {
   const auto errors = validate(config);
   if (!errors.empty()) {
     throw std::invalid_argument("invalid pipeline configuration: " + joinMessages(errors));
@@ -1184,12 +1291,34 @@ InspectionResult inspect(const Model& model,
         StatusCode::kInvalidInput,
         "the model's descriptors were computed with other descriptor settings than this "
         "inspection's: load the model with the pipeline's descriptor settings");
+  } else if (initial != nullptr && !isRigid(*initial)) {
+    result.status = Status::failure(StatusCode::kInvalidInput,
+                                    "the initial pose is not a rigid transform (a finite "
+                                    "rotation with orthonormal axes, determinant +1, and a "
+                                    "finite translation)");
   } else if (watch.proceed("clean", 0.0)) {
-    runStages(model, scan, config, progress, &watch, &result);
+    runStages(model, scan, initial, config, progress, &watch, &result);
   }
   judge(config, &result);
   result.timings.push_back({"total", secondsSince(start)});
   return result;
+}
+
+}  // namespace
+
+InspectionResult inspect(const Model& model,
+                         const Scan& scan,
+                         const PipelineConfig& config,
+                         const ProgressCallback& progress) {
+  return run(model, scan, nullptr, config, progress);
+}
+
+InspectionResult inspectFrom(const Model& model,
+                             const Scan& scan,
+                             const Eigen::Isometry3d& initial_T_cad_scan,
+                             const PipelineConfig& config,
+                             const ProgressCallback& progress) {
+  return run(model, scan, &initial_T_cad_scan, config, progress);
 }
 
 }  // namespace freeform_inspection

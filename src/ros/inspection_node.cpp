@@ -358,6 +358,55 @@ std::optional<InspectionReport> InspectionNode::tooBig(const sensor_msgs::PointC
   return report;
 }
 
+std::optional<InspectionReport> InspectionNode::initialPose(
+    const Inspect::Request& request,
+    const std_msgs::Header& scan_header,
+    std::optional<Eigen::Isometry3d>* pose) const {
+  const geometry_msgs::TransformStamped& guess = request.initial_guess;
+  if (guess.header.frame_id.empty()) {
+    return std::nullopt;  // search from scratch
+  }
+  const auto refused = [&scan_header](const std::string& code, const std::string& message) {
+    InspectionReport report = errorReport(code, message);
+    report.header = scan_header;
+    return report;
+  };
+  if (!guess.child_frame_id.empty() && guess.child_frame_id != config_.part_frame) {
+    return refused("INVALID_INPUT",
+                   "initial_guess.child_frame_id is '" + guess.child_frame_id +
+                       "': it must be the part frame '" + config_.part_frame + "' or empty");
+  }
+  const auto& q = guess.transform.rotation;
+  const auto& t = guess.transform.translation;
+  const double norm = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  if (!std::isfinite(norm + t.x + t.y + t.z) || std::abs(norm - 1.0) > 1e-3) {
+    return refused("INVALID_INPUT",
+                   "initial_guess's rotation must be a unit quaternion and its translation "
+                   "finite (quaternion norm " +
+                       std::to_string(norm) + ")");
+  }
+  // The part's pose in the guess's frame, carried into the scan's frame at the scan's stamp.
+  Eigen::Isometry3d T_scan_guess = Eigen::Isometry3d::Identity();
+  if (guess.header.frame_id != scan_header.frame_id) {
+    try {
+      T_scan_guess =
+          tf2::transformToEigen(tf_buffer_.lookupTransform(scan_header.frame_id,
+                                                           guess.header.frame_id,
+                                                           scan_header.stamp,
+                                                           ros::Duration(config_.tf_timeout)));
+    } catch (const tf2::TransformException& error) {
+      return refused("TF_ERROR",
+                     "cannot move initial_guess from frame '" + guess.header.frame_id +
+                         "' into the scan's frame '" + scan_header.frame_id + "' at stamp " +
+                         std::to_string(scan_header.stamp.toSec()) + " within " +
+                         std::to_string(config_.tf_timeout) + " s: " + error.what());
+    }
+  }
+  const Eigen::Isometry3d T_scan_part = T_scan_guess * tf2::transformToEigen(guess);
+  *pose = T_scan_part.inverse();  // scan → CAD: the CAD frame is the part frame
+  return std::nullopt;
+}
+
 InspectionReport InspectionNode::inspect(const Inspect::Request& request,
                                          ScanMessage scan,
                                          const std::shared_ptr<const fi::Model>& model,
@@ -389,6 +438,10 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
         errorReport(errorCode(converted.status.code), converted.status.message);
     report.header = scan_header;
     return report;
+  }
+  std::optional<Eigen::Isometry3d> initial;
+  if (auto refused = initialPose(request, scan_header, &initial)) {
+    return *refused;
   }
   std_msgs::Header header = scan_header;
   // With a fixed frame the scan is inspected where it was measured (a range image keeps its
@@ -422,7 +475,9 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
     return stage(name,
                  kInspectingProgress + fraction * (kPublishingProgress - kInspectingProgress));
   };
-  fi::InspectionResult result = fi::inspect(*model, converted.scan, pipeline, core_stage);
+  fi::InspectionResult result =
+      initial ? fi::inspectFrom(*model, converted.scan, *initial, pipeline, core_stage)
+              : fi::inspect(*model, converted.scan, pipeline, core_stage);
   // fixed → scan → CAD (unchanged without a fixed frame; a failed one stays the identity)
   if (result.registration != fi::RegistrationStatus::kFailed) {
     result.T_cad_scan = result.T_cad_scan * T_fixed_scan.inverse();

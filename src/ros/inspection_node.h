@@ -112,6 +112,13 @@ class InspectionNode {
   /// input/max_points (refused before anything is copied or converted).
   std::optional<freeform_inspection::InspectionReport> requestedScan(
       const freeform_inspection::Inspect::Request& request, ScanMessage* scan) const;
+  /// The request's initial_guess as T_cad_scan of a scan in `scan_frame` at `stamp` (in *pose;
+  /// left empty when the request gives none), or the refusal: a rotation that is no unit
+  /// quaternion, another child frame than ~part_frame, a frame tf cannot move into the scan's.
+  std::optional<freeform_inspection::InspectionReport> initialPose(
+      const freeform_inspection::Inspect::Request& request,
+      const std_msgs::Header& scan_header,
+      std::optional<Eigen::Isometry3d>* pose) const;
   /// The refusal of a (vertex) cloud of more than input/max_points points, or nothing.
   std::optional<freeform_inspection::InspectionReport> tooBig(const sensor_msgs::PointCloud2& cloud,
                                                               const std_msgs::Header& header) const;

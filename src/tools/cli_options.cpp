@@ -2,9 +2,11 @@
 // Copyright 2026 The freeform_inspection authors
 #include "cli_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <sstream>
 
 namespace freeform_inspection {
 namespace {
@@ -16,6 +18,35 @@ std::optional<double> parsePositive(const std::string& text) {
     return std::nullopt;
   }
   return value;
+}
+
+// --initial-pose: 12 or 16 finite numbers, row-major, separated by spaces or commas; brackets are
+// ignored, so the report's transform_cad_from_scan can be pasted as it is. A fourth row must be
+// 0 0 0 1.
+std::optional<std::vector<double>> parsePose(std::string text) {
+  std::replace_if(
+      text.begin(), text.end(), [](char c) { return c == ',' || c == '[' || c == ']'; }, ' ');
+  std::istringstream stream(text);
+  std::vector<double> numbers;
+  std::string word;
+  while (stream >> word) {
+    char* end = nullptr;
+    const double value = std::strtod(word.c_str(), &end);
+    if (*end != '\0' || !std::isfinite(value)) {
+      return std::nullopt;
+    }
+    numbers.push_back(value);
+  }
+  if (numbers.size() == 16) {
+    if (numbers[12] != 0.0 || numbers[13] != 0.0 || numbers[14] != 0.0 || numbers[15] != 1.0) {
+      return std::nullopt;
+    }
+    numbers.resize(12);
+  }
+  if (numbers.size() != 12) {
+    return std::nullopt;
+  }
+  return numbers;
 }
 
 // Applies one "--flag value" pair; returns an error message or "".
@@ -39,6 +70,16 @@ std::string apply(const std::string& flag, const std::string& value, CliOptions*
       return flag + " needs a positive number, got '" + value + "'";
     }
     *scale->second = *number;
+    return "";
+  }
+  if (flag == "--initial-pose") {
+    const auto pose = parsePose(value);
+    if (!pose) {
+      return "--initial-pose needs the scan-to-CAD transform as 12 numbers (its first three rows, "
+             "row-major) or 16 ending in 0 0 0 1, got '" +
+             value + "'";
+    }
+    options->initial_pose = *pose;
     return "";
   }
   if (flag == "--tolerance") {
@@ -84,8 +125,11 @@ std::string cliUsage() {
          "                        [--cad-scale S] [--scan-scale S] [--tolerance T]\n"
          "                        [--config FILE.yaml] [--report OUT.json] [--deviation OUT.ply]\n"
          "                        [--html OUT.html] [--model-cache DIR | --no-model-cache]\n"
+         "                        [--initial-pose \"R11 R12 R13 TX R21 ... TZ\"]\n"
          "\n"
          "Registers the scan to the CAD model from any pose and prints one JSON object.\n"
+         "--initial-pose refines a known scan-to-CAD transform (a fixture's nominal pose; the\n"
+         "report's transform_cad_from_scan pasted as it is) by ICP instead of searching.\n"
          "--deviation writes the coloured deviation map (PLY, CAD frame) when the scan was\n"
          "registered; --html writes a self-contained report for people (docs/reports.md).\n"
          "Lengths are metres after scaling: --cad-scale 0.001 reads a CAD file in millimetres,\n"

@@ -21,7 +21,10 @@ struct CliOptions {
   std::string html_path;            ///< --html OUT.html
   std::string model_cache;          ///< --model-cache DIR (empty: the default directory)
   bool no_model_cache = false;      ///< --no-model-cache
-  bool help = false;                ///< --help
+  /// --initial-pose: the scan → CAD transform to refine instead of searching, row-major, its
+  /// first three rows (12 numbers; a fourth row 0 0 0 1 may follow). Empty: search.
+  std::vector<double> initial_pose;
+  bool help = false;  ///< --help
 };
 
 /// Parsed command line, or the one-line reason it could not be parsed.

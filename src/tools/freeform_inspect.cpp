@@ -111,6 +111,17 @@ fi::Status writeOutputs(const fi::CliOptions& options,
   return fi::Status::success();
 }
 
+// --initial-pose's 12 numbers as a transform (the core checks that it is rigid).
+Eigen::Isometry3d initialPose(const fi::CliOptions& options) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 4; ++col) {
+      pose.matrix()(row, col) = options.initial_pose[static_cast<std::size_t>(4 * row + col)];
+    }
+  }
+  return pose;
+}
+
 int run(const fi::CliOptions& options) {
   const std::time_t started = std::time(nullptr);
   const auto start = std::chrono::steady_clock::now();
@@ -131,7 +142,10 @@ int run(const fi::CliOptions& options) {
     return refuse(scan.status.message);
   }
   const double load_seconds = secondsSince(start);
-  fi::InspectionResult result = fi::inspect(*model.model, scan.scan, config.config);
+  fi::InspectionResult result =
+      options.initial_pose.empty()
+          ? fi::inspect(*model.model, scan.scan, config.config)
+          : fi::inspectFrom(*model.model, scan.scan, initialPose(options), config.config);
   result.counts.non_finite += scan.non_finite_removed;
   result.warnings.insert(result.warnings.begin(), model.warnings.begin(), model.warnings.end());
   result.warnings.insert(result.warnings.end(), scan.warnings.begin(), scan.warnings.end());

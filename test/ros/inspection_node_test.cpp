@@ -179,6 +179,43 @@ TEST(InspectionNode, DentedScanFailsWithTheDentInPlaceAndTighterToleranceFails) 
   EXPECT_LT(strict.report.deviation.in_tolerance_fraction, 0.5);
 }
 
+// A known pose (the fixture's nominal) in the scan's frame: refined by ICP, no features sought;
+// a guess tf cannot place, a broken quaternion and another child frame are refused by name.
+TEST(InspectionNode, InitialGuessIsRefinedWithoutASearch) {
+  const Eigen::Isometry3d truth = sampleTruth();  // T_cad_scan
+  Eigen::Isometry3d off = Eigen::Isometry3d::Identity();
+  off.linear() =
+      Eigen::AngleAxisd(3.0 * M_PI / 180.0, Eigen::Vector3d(0.8, 0.0, 0.6)).toRotationMatrix();
+  off.translation() = Eigen::Vector3d(0.0, 0.002, 0.0);
+  Inspect::Request request = cloudRequest(sampleCloud());
+  request.initial_guess = tf2::eigenToTransform(off * truth.inverse());  // part in the scan frame
+  request.initial_guess.header.frame_id = "scanner";
+  request.initial_guess.child_frame_id = "part";
+  const Inspect::Response refined = callInspect(request);
+  EXPECT_EQ(refined.status, Inspect::Response::PASS) << refined.message;
+  EXPECT_EQ(refined.report.registration_status, "ok") << refined.message;
+  EXPECT_EQ(refined.report.counts.features, 0u);
+  expectSamplePose(tf2::transformToEigen(refined.report.transform), "refined initial_guess");
+
+  Inspect::Request elsewhere = request;
+  elsewhere.initial_guess.header.frame_id = "no_such_frame";
+  const auto lost = callInspect(elsewhere);
+  EXPECT_EQ(lost.report.error_code, "TF_ERROR");
+  EXPECT_NE(lost.message.find("no_such_frame"), std::string::npos) << lost.message;
+
+  Inspect::Request broken = request;
+  broken.initial_guess.transform.rotation = geometry_msgs::Quaternion();  // all zero
+  const auto no_rotation = callInspect(broken);
+  EXPECT_EQ(no_rotation.report.error_code, "INVALID_INPUT");
+  EXPECT_NE(no_rotation.message.find("quaternion"), std::string::npos) << no_rotation.message;
+
+  Inspect::Request other_child = request;
+  other_child.initial_guess.child_frame_id = "fixture";
+  const auto wrong_child = callInspect(other_child);
+  EXPECT_EQ(wrong_child.report.error_code, "INVALID_INPUT");
+  EXPECT_NE(wrong_child.message.find("'part'"), std::string::npos) << wrong_child.message;
+}
+
 TEST(InspectionNode, RefusesBadRequestsWithReasonsAndKeepsServing) {
   const auto empty = callInspect(cloudRequest(toCloud({}, "scanner")));
   EXPECT_EQ(empty.status, Inspect::Response::ERROR);

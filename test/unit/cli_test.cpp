@@ -82,6 +82,46 @@ int lineCount(const std::string& text) {
   return lines;
 }
 
+// The sample scan's true scan → CAD transform, written beside it by generate_blade.
+Eigen::Matrix4d sampleTruth() {
+  std::ifstream file(kTruth);
+  Eigen::Matrix4d truth;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      file >> truth(r, c);
+    }
+  }
+  EXPECT_TRUE(file) << kTruth;
+  return truth;
+}
+
+Eigen::Matrix4d reportedPose(const nlohmann::json& json) {
+  Eigen::Matrix4d pose;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      pose(r, c) = json["transform_cad_from_scan"][r][c].get<double>();
+    }
+  }
+  return pose;
+}
+
+double turnDeg(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b) {
+  const Eigen::Matrix3d relative = a.topLeftCorner<3, 3>().transpose() * b.topLeftCorner<3, 3>();
+  return Eigen::AngleAxisd(relative).angle() * 180.0 / M_PI;
+}
+
+// The first three rows of a transform, row-major, as --initial-pose takes them.
+std::string poseArgument(const Eigen::Matrix4d& pose) {
+  std::ostringstream text;
+  text.precision(17);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      text << (r + c > 0 ? " " : "") << pose(r, c);
+    }
+  }
+  return "\"" + text.str() + "\"";
+}
+
 TEST(Cli, HelpExitsZeroAndShowsTheContract) {
   const CliRun run = runCli("--help");
   EXPECT_EQ(run.exit_code, 0);
@@ -89,17 +129,54 @@ TEST(Cli, HelpExitsZeroAndShowsTheContract) {
 }
 
 TEST(Cli, UsageErrorsExitTwoWithOneLineOnStderr) {
-  for (const std::string args : {"",
-                                 "--cad",
-                                 "--cad a.stl",
-                                 "--cad a.stl --scan b.ply --bogus 1",
-                                 "--cad a.stl --scan b.ply --cad-scale -1",
-                                 "--cad a.stl --scan b.ply --tolerance abc"}) {
+  for (const std::string args :
+       {"",
+        "--cad",
+        "--cad a.stl",
+        "--cad a.stl --scan b.ply --bogus 1",
+        "--cad a.stl --scan b.ply --cad-scale -1",
+        "--cad a.stl --scan b.ply --tolerance abc",
+        "--cad a.stl --scan b.ply --initial-pose '1 0 0 0 0 1 0 0'",
+        "--cad a.stl --scan b.ply --initial-pose '1 0 0 0 0 1 0 0 0 0 1 x'",
+        "--cad a.stl --scan b.ply --initial-pose "
+        "'1 0 0 0 0 1 0 0 0 0 1 0 0 0 1 1'"}) {
     const CliRun run = runCli(args);
     EXPECT_EQ(run.exit_code, 2) << args;
     EXPECT_EQ(lineCount(run.err), 1) << args << ": " << run.err;
     EXPECT_TRUE(run.out.empty()) << args;
   }
+}
+
+// A known pose (a fixture's nominal) is refined by ICP without the search: the truth turned by
+// 3° and moved 2 mm comes back within 0.1° of it; one that is no rigid transform is bad input.
+TEST(Cli, InitialPoseIsRefinedWithoutTheSearch) {
+  const Eigen::Matrix4d truth = sampleTruth();
+  Eigen::Matrix4d off = Eigen::Matrix4d::Identity();
+  off.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(3.0 * M_PI / 180.0, Eigen::Vector3d(0.0, 0.6, 0.8)).toRotationMatrix();
+  off.topRightCorner<3, 1>() = Eigen::Vector3d(0.002, 0.0, 0.0);
+  const std::string args = "--cad " + kBladeFine + " --cad-scale 0.001 --scan " + kScan +
+                           " --tolerance 0.0002 --initial-pose ";
+  const CliRun run = runCli(args + poseArgument(off * truth));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["status"], "ok") << json["message"];
+  EXPECT_EQ(json["verdict"], "PASS") << json["verdict_reason"];
+  const Eigen::Matrix4d pose = reportedPose(json);
+  EXPECT_LT(turnDeg(pose, truth), 0.1);
+  EXPECT_LT((pose.topRightCorner<3, 1>() - truth.topRightCorner<3, 1>()).norm(), 0.0005);
+  EXPECT_EQ(json["counts"]["features"].get<int>(), 0);
+  EXPECT_FALSE(json["timings_s"].contains("global_registration"));
+  // The report's own transform pasted back as it is (nested lists, 16 numbers).
+  const CliRun again = runCli(args + "'" + json["transform_cad_from_scan"].dump() + "'");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_LT(turnDeg(reportedPose(nlohmann::json::parse(again.out)), pose), 0.01);
+  Eigen::Matrix4d stretched = truth;
+  stretched.topLeftCorner<3, 3>() *= 2.0;
+  const CliRun refused = runCli(args + poseArgument(stretched));
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_EQ(lineCount(refused.err), 1) << refused.err;
+  EXPECT_NE(refused.err.find("rigid"), std::string::npos) << refused.err;
 }
 
 TEST(Cli, MissingCadExitsTwoNamingTheFile) {
@@ -132,23 +209,9 @@ TEST(Cli, SampleRunPrintsTheJsonContractAndWritesTheReport) {
   EXPECT_EQ(json["error_code"], "ok");
   EXPECT_EQ(json["verdict"], "PASS") << json["verdict_reason"];
   // The pose against the truth written next to the sample scan (generate_blade).
-  std::ifstream truth_file(kTruth);
-  Eigen::Matrix4d truth;
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      truth_file >> truth(r, c);
-    }
-  }
-  ASSERT_TRUE(truth_file) << kTruth;
-  Eigen::Matrix4d pose;
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      pose(r, c) = json["transform_cad_from_scan"][r][c].get<double>();
-    }
-  }
-  const Eigen::Matrix3d relative =
-      pose.topLeftCorner<3, 3>().transpose() * truth.topLeftCorner<3, 3>();
-  EXPECT_LT(Eigen::AngleAxisd(relative).angle() * 180.0 / M_PI, 0.1);
+  const Eigen::Matrix4d truth = sampleTruth();
+  const Eigen::Matrix4d pose = reportedPose(json);
+  EXPECT_LT(turnDeg(pose, truth), 0.1);
   EXPECT_LT((pose.topRightCorner<3, 1>() - truth.topRightCorner<3, 1>()).norm(), 0.0005);
   EXPECT_LT(json["rmse"].get<double>(), 0.0001);
   EXPECT_GT(json["fitness"].get<double>(), 0.9);

@@ -177,6 +177,60 @@ Registered registerCase(const Model& model, std::uint64_t seed, double noise, bo
   return out;
 }
 
+// A pose known roughly (a fixture's nominal pose): inspectFrom() refines it without a search. A
+// blade view started 4° and 1 % of L off the truth lands where the search's pose does, with no
+// features sought; a start the scan does not touch within ICP's first cut-off (2 L away) fails
+// with a reason, and a start that is no rigid transform is the caller's error.
+TEST(Registration, InitialPoseIsRefinedWithoutASearch) {
+  const Model& model = blade();
+  const double diagonal = model.bounds().diagonal();
+  for (const bool partial : {false, true}) {
+    SCOPED_TRACE(partial ? "partial" : "full");
+    const SyntheticScan truth = makeCase(model, caseConfig(3, 0.005, partial, 0.0));
+    const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 2.0, -1.0).normalized();
+    Eigen::Isometry3d off = Eigen::Isometry3d::Identity();
+    off.linear() = Eigen::AngleAxisd(4.0 * M_PI / 180.0, axis).toRotationMatrix();
+    off.translation() = 0.01 * diagonal * Eigen::Vector3d(0.0, 0.6, 0.8);
+    const InspectionResult from =
+        inspectFrom(model, truth.scan, off * truth.T_cad_scan, PipelineConfig());
+    ASSERT_EQ(from.registration, RegistrationStatus::kOk) << from.status.message;
+    const PoseError error = poseError(from, truth, diagonal);
+    std::printf("from 4 deg off: %.3f deg, %.5f L\n", error.rotation_deg, error.centroid_ratio);
+    EXPECT_LT(error.rotation_deg, 0.5);
+    EXPECT_LT(error.centroid_ratio, 0.002);
+    EXPECT_EQ(from.counts.features, 0u);
+    EXPECT_TRUE(std::none_of(from.timings.begin(), from.timings.end(), [](const StageTiming& t) {
+      return t.stage == "global_registration";
+    }));
+    EXPECT_GT(from.deviation.evaluated, 0u);
+    // The search's own pose agrees with it.
+    const InspectionResult searched = inspect(model, truth.scan, PipelineConfig());
+    ASSERT_EQ(searched.registration, RegistrationStatus::kOk) << searched.status.message;
+    const double apart =
+        Eigen::AngleAxisd(searched.T_cad_scan.linear().transpose() * from.T_cad_scan.linear())
+            .angle() *
+        180.0 / M_PI;
+    EXPECT_LT(apart, 0.3);
+  }
+  const SyntheticScan truth = makeCase(model, caseConfig(3, 0.005, false, 0.0));
+  Eigen::Isometry3d away = truth.T_cad_scan;
+  away.translation() += Eigen::Vector3d(2.0 * diagonal, 0.0, 0.0);
+  const InspectionResult lost = inspectFrom(model, truth.scan, away, PipelineConfig());
+  EXPECT_EQ(lost.registration, RegistrationStatus::kFailed);
+  EXPECT_FALSE(lost.status.message.empty());
+  EXPECT_EQ(lost.verdict, Verdict::kNotEvaluated);
+  Eigen::Isometry3d scaled = truth.T_cad_scan;
+  scaled.linear() *= 1.1;
+  Eigen::Isometry3d not_finite = truth.T_cad_scan;
+  not_finite.translation().x() = std::numeric_limits<double>::quiet_NaN();
+  for (const Eigen::Isometry3d& bad : {scaled, not_finite}) {
+    const InspectionResult refused = inspectFrom(model, truth.scan, bad, PipelineConfig());
+    EXPECT_EQ(refused.status.code, StatusCode::kInvalidInput);
+    EXPECT_NE(refused.status.message.find("rigid"), std::string::npos) << refused.status.message;
+    EXPECT_EQ(refused.registration, RegistrationStatus::kFailed);
+  }
+}
+
 // Clutter beside the part that is no plane (a clamp: a block of points), twice the part's points:
 // no pose explains the scan; input.crop_box, set around where the part lies in the scan's frame
 // (as a fixed scanner's integrator sets it once), takes it away and the part registers.
