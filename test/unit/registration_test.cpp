@@ -179,8 +179,9 @@ Registered registerCase(const Model& model, std::uint64_t seed, double noise, bo
 
 // A pose known roughly (a fixture's nominal pose): inspectFrom() refines it without a search. A
 // blade view started 4° and 1 % of L off the truth lands where the search's pose does, with no
-// features sought; a start the scan does not touch within ICP's first cut-off (2 L away) fails
-// with a reason, and a start that is no rigid transform is the caller's error.
+// features sought; from 30° off it lands there too, warning how far ICP moved it; a start the
+// scan does not touch within ICP's first cut-off (2 L away) fails with a reason, and a start that
+// is no rigid transform is the caller's error.
 TEST(Registration, InitialPoseIsRefinedWithoutASearch) {
   const Model& model = blade();
   const double diagonal = model.bounds().diagonal();
@@ -203,6 +204,20 @@ TEST(Registration, InitialPoseIsRefinedWithoutASearch) {
       return t.stage == "global_registration";
     }));
     EXPECT_GT(from.deviation.evaluated, 0u);
+    const auto moved_far = [](const InspectionResult& r) {
+      return std::any_of(r.warnings.begin(), r.warnings.end(), [](const std::string& w) {
+        return w.find("from the initial pose") != std::string::npos;
+      });
+    };
+    EXPECT_FALSE(moved_far(from)) << "4° is within the separation of distinct poses";
+    // 30° off: ICP still brings it home on the blade, and says how far it moved it.
+    Eigen::Isometry3d far_off = off;
+    far_off.linear() = Eigen::AngleAxisd(30.0 * M_PI / 180.0, axis).toRotationMatrix();
+    const InspectionResult from_far =
+        inspectFrom(model, truth.scan, far_off * truth.T_cad_scan, PipelineConfig());
+    ASSERT_EQ(from_far.registration, RegistrationStatus::kOk) << from_far.status.message;
+    EXPECT_LT(poseError(from_far, truth, diagonal).rotation_deg, 0.5);
+    EXPECT_TRUE(moved_far(from_far));
     // The search's own pose agrees with it.
     const InspectionResult searched = inspect(model, truth.scan, PipelineConfig());
     ASSERT_EQ(searched.registration, RegistrationStatus::kOk) << searched.status.message;
