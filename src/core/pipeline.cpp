@@ -82,6 +82,16 @@ struct Stopwatch {
         Status::failure(StatusCode::kCancelled, "inspection cancelled before stage " + stage);
     return false;
   }
+  // Ends the ICP stage: false, with the status set, when ICP left no usable pose or the caller
+  // asked to stop before the verification.
+  bool icpDone(const IcpResult& icp) {
+    lap("icp");
+    if (!icp.usable()) {
+      result->status = icp.status;
+      return false;
+    }
+    return proceed("verification", 0.8);
+  }
 };
 
 // A pose that leaves more than this share of the scan's surface off the CAD is retried from
@@ -378,9 +388,6 @@ ProbeStarts probesAroundRivals(const Model& model,
   return starts;
 }
 
-// Features → candidates → triplets → verification → ICP. Fills the registration fields of
-// `result`; the status says why when no pose could be trusted.
-// `oriented`: the scan's normals point out of the material (see VerificationSet).
 // ICP of the scan from `initial`: on the fitted surfaces' points when the curvature fit grew
 // (`surface_points` not empty; the fit's numbers are then measured on the scan's own points),
 // each point paired with faces turned its way where `point_normals` are given.
@@ -471,6 +478,9 @@ bool acceptPose(const Model& model,
   return false;
 }
 
+// Features → candidates → triplets → verification → ICP. Fills the registration fields of
+// `result`; the status says why when no pose could be trusted.
+// `oriented`: the scan's normals point out of the material (see VerificationSet).
 void registerScan(const Model& model,
                   const Points& scan_points,
                   const DescriptorResult& scan,
@@ -781,15 +791,10 @@ void registerScan(const Model& model,
       break;  // the pose stands: a second round would search from the same place
     }
   }
-  watch.lap("icp");
-  if (!icp.usable()) {
-    result->status = icp.status;
-    return;
-  }
-  // Does the pose explain the scan, and does no other pose explain it as well? For a part with
-  // many near-twins (a flange with bolt holes) the scan may side against every rival, and each
-  // is then refined to convergence: up to a second, so it is a stage of its own.
-  if (!watch.proceed("verification", 0.8)) {
+  // Then: does the pose explain the scan, and does no other pose explain it as well? For a part
+  // with many near-twins (a flange with bolt holes) the scan may side against every rival, and
+  // each is then refined to convergence: up to a second, so it is a stage of its own.
+  if (!watch.icpDone(icp)) {
     return;
   }
   std::size_t explained = 0;
@@ -1007,12 +1012,7 @@ void registerFrom(const Model& model,
                                      coarse_truncation,
                                      config.icp,
                                      faces);
-  watch.lap("icp");
-  if (!icp.usable()) {
-    result->status = icp.status;
-    return;
-  }
-  if (!watch.proceed("verification", 0.8)) {
+  if (!watch.icpDone(icp)) {
     return;
   }
   const VerificationSet set =
