@@ -128,6 +128,23 @@ TEST(InspectAction, EmptyCloudIsAbortedWithTheReason) {
       << client.getState().getText();
 }
 
+// The goal's initial_guess reaches the node: a guess without a rotation is refused by name
+// (were it dropped, the scan would be searched and pass).
+TEST(InspectAction, InitialGuessTravelsWithTheGoal) {
+  Client client(nodeName() + "/inspect_action", false);
+  ASSERT_TRUE(client.waitForServer(kWait));
+  FeedbackLog log;
+  InspectGoal goal = goalFor(sampleCloud(), "guess");
+  goal.initial_guess.header.frame_id = "scanner";  // rotation left all zero
+  send(&client, goal, &log);
+  ASSERT_TRUE(client.waitForResult(kInspectWait));
+  EXPECT_EQ(client.getState(), State::ABORTED) << client.getState().getText();
+  ASSERT_TRUE(client.getResult());
+  EXPECT_EQ(client.getResult()->report.error_code, "INVALID_INPUT");
+  EXPECT_NE(client.getState().getText().find("initial_guess"), std::string::npos)
+      << client.getState().getText();
+}
+
 TEST(InspectAction, CancelDuringTheInspectionEndsPreemptedWhenTheStageEndsAndPublishesNothing) {
   Client client(nodeName() + "/inspect_action", false);
   ASSERT_TRUE(client.waitForServer(kWait));
