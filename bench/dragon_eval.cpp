@@ -15,6 +15,8 @@
 // 0.8 refuses the pairs that overlap less (that is what it is for); --step N pairs view i with
 // view i + N (default 1, 24°); --config reads a pipeline YAML (config/default.yaml's keys) before
 // --min-surface applies; --only runs the pairs whose CAD view's file name contains NAME.
+// FI_VERBOSE prints the status message of each pair not `ok`; FI_DIAG, for each pair missed, where
+// the pipeline's ICP lands when it starts at the true pose (inspectFrom).
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -114,6 +116,19 @@ int main(int argc, char** argv) {
         !right && is_ok ? "  <-- WRONG POSE REPORTED OK" : "");
     if (!is_ok && std::getenv("FI_VERBOSE") != nullptr) {
       std::printf("    %s\n", result.status.message.c_str());
+    }
+    if (!(right && is_ok) && std::getenv("FI_DIAG") != nullptr) {
+      // Where the pipeline's own ICP lands from the truth: a miss it also misses is no search's.
+      const fi::InspectionResult from_truth = fi::inspectFrom(model, scan, truth, config);
+      std::printf("    ICP from the truth: %s, %.2f deg and %.4f %%L from it, surface %.3f%s%s\n",
+                  fi::toString(from_truth.registration),
+                  fi::bench::rotationErrorDeg(from_truth.T_cad_scan, truth),
+                  100.0 * (from_truth.T_cad_scan * centroid - truth * centroid).norm() / diagonal,
+                  from_truth.surface_on_cad,
+                  from_truth.registration == fi::RegistrationStatus::kOk ? "" : ": ",
+                  from_truth.registration == fi::RegistrationStatus::kOk
+                      ? ""
+                      : from_truth.status.message.c_str());
     }
   }
   std::printf("# success %d/%zu, ok %d, wrong-but-ok %d (min_surface_on_cad %.2f, step %d)\n",
