@@ -140,6 +140,11 @@ struct InspectionResult {
   /// coarsely exported CAD cuts (registration.md, "A coarse CAD"). Deviations stay measured
   /// from the faces.
   double cad_curve_share = 0.0;
+  /// inspectFrom(): how far the registered pose lies from the given one, the turn [deg] and the
+  /// shift of the scan's centroid [m]: where the given pose is a fixture's nominal pose, how far
+  /// the part sat from it. NaN for inspect() and when no pose was registered.
+  double offset_from_initial_deg = std::numeric_limits<double>::quiet_NaN();
+  double offset_from_initial = std::numeric_limits<double>::quiet_NaN();  ///< [m]
   /// How far the scan's noise leaves the pose free (pose_uncertainty.h); known once the
   /// deviation is measured (registration ok or ambiguous).
   PoseUncertainty pose_uncertainty;

@@ -1035,15 +1035,19 @@ void registerFrom(const Model& model,
   result->status = Status::success();
   result->status.message = "refined from the given pose: RMS " + formatLength(result->rmse) +
                            ", fitness " + std::to_string(result->fitness);
+  // How far the part sat from the given pose (a fixture's nominal): the turn, and the shift of
+  // the scan's centroid, where the part is.
+  const Eigen::Vector3d reference = set.centroid();
+  result->offset_from_initial_deg =
+      Eigen::AngleAxisd(initial.linear().transpose() * result->T_cad_scan.linear()).angle() *
+      180.0 / kPi;
+  result->offset_from_initial = (initial * reference - result->T_cad_scan * reference).norm();
   // A guess that ICP moved as far as poses the search would list apart may have slid onto a
   // near-twin (a flange's bolt-hole turns: from 10-20° off, a quarter of the guesses did).
-  const Eigen::Vector3d reference = set.centroid();
   if (separatePoses(initial, result->T_cad_scan, reference, model.cellSize())) {
-    const double turn =
-        Eigen::AngleAxisd(initial.linear().transpose() * result->T_cad_scan.linear()).angle();
     result->warnings.push_back(
-        "ICP moved the pose " + std::to_string(turn * 180.0 / kPi) + " deg and " +
-        formatLength((initial * reference - result->T_cad_scan * reference).norm()) +
+        "ICP moved the pose " + std::to_string(result->offset_from_initial_deg) + " deg and " +
+        formatLength(result->offset_from_initial) +
         " from the initial pose: on a part with near-twins it may have slid onto one; search "
         "without the initial pose to check");
   }

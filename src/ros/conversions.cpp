@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <limits>
 
 #include "result_messages.h"
 #include <tf2_eigen/tf2_eigen.h>
@@ -102,6 +103,11 @@ freeform_inspection::InspectionReport errorReport(const std::string& error_code,
   report.message = message;
   report.registration_status = fi::toString(fi::RegistrationStatus::kFailed);
   report.transform.transform.rotation.w = 1.0;
+  // Unknown, as the other quantities a refused request never measured say with NaN.
+  report.offset_from_guess_deg = std::numeric_limits<double>::quiet_NaN();
+  report.offset_from_guess = std::numeric_limits<double>::quiet_NaN();
+  report.pose_rotation_std_deg = std::numeric_limits<double>::quiet_NaN();
+  report.pose_translation_std = std::numeric_limits<double>::quiet_NaN();
   return report;
 }
 
@@ -148,6 +154,8 @@ freeform_inspection::InspectionReport toReport(const fi::InspectionResult& resul
   report.rmse = result.rmse;
   report.fitness = result.fitness;
   report.ambiguity = result.ambiguity;
+  report.offset_from_guess_deg = result.offset_from_initial_deg;
+  report.offset_from_guess = result.offset_from_initial;
   const fi::PoseUncertainty& spread = result.pose_uncertainty;
   for (int r = 0; r < 6; ++r) {
     for (int c = 0; c < 6; ++c) {

@@ -485,6 +485,11 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
       alternative = alternative * T_fixed_scan.inverse();
     }
   }
+  // The core's non-fatal findings (a pose ICP moved far from the guess, a coarse CAD's chord
+  // error, ...) go to rosout; the report files hold them too.
+  for (const std::string& warning : result.warnings) {
+    ROS_WARN_STREAM("inspection: " << warning);
+  }
   if (result.status.code == fi::StatusCode::kCancelled) {
     return cancelledReport("during stage 'inspecting' (" + result.status.message + ")",
                            scan_header);

@@ -153,6 +153,8 @@ nlohmann::ordered_json toJson(const InspectionResult& result) {
   json["scan_noise"] = numberOrNull(result.scan_noise);
   json["surface_on_cad"] = numberOrNull(result.surface_on_cad);
   json["cad_curve_share"] = result.cad_curve_share;
+  json["offset_from_initial"] = {{"rotation_deg", numberOrNull(result.offset_from_initial_deg)},
+                                 {"translation", numberOrNull(result.offset_from_initial)}};
   json["pose_uncertainty"] = poseUncertaintyJson(result.pose_uncertainty);
   json["verdict"] = toString(result.verdict);
   json["verdict_reason"] = result.verdict_reason;

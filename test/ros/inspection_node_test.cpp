@@ -98,6 +98,7 @@ TEST(InspectionNode, RegistersTheSampleScanJudgesItAndPublishesPoseAndDeviation)
   // The report carries the part's pose in the scan frame: inverse(T_cad_scan).
   expectSamplePose(tf2::transformToEigen(response.report.transform), "report.transform");
   EXPECT_EQ(response.report.part_id, "sn-0001");
+  EXPECT_TRUE(std::isnan(response.report.offset_from_guess_deg)) << "searched, no guess";
   EXPECT_EQ(response.report.counts.scan_points, scan.scan.points.size());
   EXPECT_EQ(response.report.counts.scan_faces, 0u) << "an unorganized cloud has no faces";
   EXPECT_EQ(response.report.header.frame_id, "scanner");
@@ -195,6 +196,8 @@ TEST(InspectionNode, InitialGuessIsRefinedWithoutASearch) {
   EXPECT_EQ(refined.status, Inspect::Response::PASS) << refined.message;
   EXPECT_EQ(refined.report.registration_status, "ok") << refined.message;
   EXPECT_EQ(refined.report.counts.features, 0u);
+  EXPECT_NEAR(refined.report.offset_from_guess_deg, 3.0, 0.1);
+  EXPECT_GT(refined.report.offset_from_guess, 0.001);
   expectSamplePose(tf2::transformToEigen(refined.report.transform), "refined initial_guess");
 
   Inspect::Request elsewhere = request;
@@ -207,6 +210,7 @@ TEST(InspectionNode, InitialGuessIsRefinedWithoutASearch) {
   broken.initial_guess.transform.rotation = geometry_msgs::Quaternion();  // all zero
   const auto no_rotation = callInspect(broken);
   EXPECT_EQ(no_rotation.report.error_code, "INVALID_INPUT");
+  EXPECT_TRUE(std::isnan(no_rotation.report.offset_from_guess_deg));
   EXPECT_NE(no_rotation.message.find("quaternion"), std::string::npos) << no_rotation.message;
 
   Inspect::Request other_child = request;

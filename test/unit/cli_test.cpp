@@ -167,6 +167,8 @@ TEST(Cli, InitialPoseIsRefinedWithoutTheSearch) {
   EXPECT_LT((pose.topRightCorner<3, 1>() - truth.topRightCorner<3, 1>()).norm(), 0.0005);
   EXPECT_EQ(json["counts"]["features"].get<int>(), 0);
   EXPECT_FALSE(json["timings_s"].contains("global_registration"));
+  EXPECT_NEAR(json["offset_from_initial"]["rotation_deg"].get<double>(), 3.0, 0.1);
+  EXPECT_GT(json["offset_from_initial"]["translation"].get<double>(), 0.001);
   // The report's own transform pasted back as it is (nested lists, 16 numbers).
   const CliRun again = runCli(args + "'" + json["transform_cad_from_scan"].dump() + "'");
   ASSERT_EQ(again.exit_code, 0) << again.err;
@@ -215,6 +217,7 @@ TEST(Cli, SampleRunPrintsTheJsonContractAndWritesTheReport) {
   EXPECT_LT((pose.topRightCorner<3, 1>() - truth.topRightCorner<3, 1>()).norm(), 0.0005);
   EXPECT_LT(json["rmse"].get<double>(), 0.0001);
   EXPECT_GT(json["fitness"].get<double>(), 0.9);
+  EXPECT_TRUE(json["offset_from_initial"]["rotation_deg"].is_null()) << "searched, no guess";
   EXPECT_GE(json["counts"]["features"].get<int>(), 3);
   EXPECT_GE(json["counts"]["correspondences"].get<int>(), 3);
   EXPECT_GT(json["counts"]["scan_points"].get<int>(), 10000);

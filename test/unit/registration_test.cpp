@@ -210,6 +210,10 @@ TEST(Registration, InitialPoseIsRefinedWithoutASearch) {
       });
     };
     EXPECT_FALSE(moved_far(from)) << "4° is within the separation of distinct poses";
+    // How far the part sat from the given pose: the 4° turn (about the CAD's origin, so the
+    // scan's centroid moved too), less the pose's own error.
+    EXPECT_NEAR(from.offset_from_initial_deg, 4.0, 0.2);
+    EXPECT_GT(from.offset_from_initial, 0.005 * diagonal);
     // 30° off: ICP still brings it home on the blade, and says how far it moved it.
     Eigen::Isometry3d far_off = off;
     far_off.linear() = Eigen::AngleAxisd(30.0 * M_PI / 180.0, axis).toRotationMatrix();
