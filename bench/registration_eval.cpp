@@ -8,7 +8,7 @@
 //   registration_eval --cad FILE [--cad-scale S] [--noise R] [--partial] [--outliers F]
 //                     [--points N] [--cases N] [--first-seed N] [--mesh-copy]
 //                     [--camera [--table] [--edge-on DEG]] [--json] [--config YAML]
-//                     [--scan-mesh FILE]
+//                     [--scan-mesh FILE] [--guess DEG [--guess-shift F]]
 //
 // --mesh-copy is the paper's §4.5 experiment: the scan is the CAD mesh itself, vertices moved by
 // Gaussian noise along their normals, at a random pose (a mesh scan, faces included).
@@ -18,6 +18,8 @@
 // plane of its two widest principal axes (a blade or a plate seen nearly edge-on: a narrow strip).
 // --scan-mesh scans another mesh of the same part (same frame and units), e.g. a finer export:
 // the scan then follows the curves the CAD's faces cut, as a real part's does (session 38).
+// --guess DEG registers from a known pose instead of searching (inspectFrom, session 40): the
+// truth turned by DEG about a random axis through the part's centre, moved by --guess-shift F × L.
 // Environment: FI_KEEP_GRID keeps a camera view's grid, FI_NO_NORMALS drops the scan's normals,
 // FI_VERBOSE prints every case's status message under its line, FI_DIAG how the pose relates to the
 // truth (printTruthDiagnostics).
@@ -61,7 +63,30 @@ struct Options {
   // --scan-mesh: scans are made of this mesh of the same part (same frame and units as the
   // CAD), e.g. a finer tessellation, so the CAD's chord error shows as it does on a real part.
   std::string scan_mesh;
+  // --guess DEG: registers from a known pose (inspectFrom) instead of searching, the truth
+  // turned by DEG about a random axis through the part's centre and moved by --guess-shift F
+  // times L in a random direction (a fixture's nominal pose that far off); < 0 off.
+  double guess_deg = -1.0;
+  double guess_shift = 0.0;
 };
+
+// The truth turned by `deg` about a random axis through `centre` (CAD frame) and moved by
+// `shift` [m] in a random direction: a known pose that far off, the same for a seed.
+Eigen::Isometry3d guessNear(const Eigen::Isometry3d& truth,
+                            const Eigen::Vector3d& centre,
+                            double deg,
+                            double shift,
+                            std::uint64_t seed) {
+  std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ULL);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const Eigen::Vector3d axis = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+  const Eigen::Vector3d direction =
+      Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+  Eigen::Isometry3d off = Eigen::Isometry3d::Identity();
+  off.linear() = Eigen::AngleAxisd(deg * 3.14159265358979323846 / 180.0, axis).toRotationMatrix();
+  off.translation() = centre - off.linear() * centre + shift * direction;
+  return off * truth;
+}
 
 // Share of the scan's finite points within `reach` of the CAD at pose T.
 double shareOnCad(const fi::Model& model,
@@ -230,6 +255,10 @@ bool parse(int argc, char** argv, Options* options) {
       options->scan_mesh = argv[++i];
     } else if (flag == "--mesh-copy") {
       options->mesh_copy = true;
+    } else if (flag == "--guess" && has_value) {
+      options->guess_deg = std::atof(argv[++i]);
+    } else if (flag == "--guess-shift" && has_value) {
+      options->guess_shift = std::atof(argv[++i]);
     } else if (flag == "--json") {
       options->json = true;
     } else if (flag == "--config" && i + 1 < argc) {
@@ -250,7 +279,7 @@ int main(int argc, char** argv) {
                  "usage: registration_eval --cad FILE [--cad-scale S] [--noise R] "
                  "[--partial] [--outliers F] [--points N] [--cases N] [--first-seed N] "
                  "[--mesh-copy] [--camera [--table] [--edge-on DEG]] [--json] [--config YAML] "
-                 "[--scan-mesh FILE]\n");
+                 "[--scan-mesh FILE] [--guess DEG [--guess-shift F]]\n");
     return 2;
   }
   fi::PipelineConfig pipeline_config;
@@ -351,7 +380,6 @@ int main(int argc, char** argv) {
     if (std::getenv("FI_NO_NORMALS") != nullptr) {
       scan.normals.clear();
     }
-    const fi::InspectionResult result = fi::inspect(model, scan, pipeline_config);
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     std::size_t surface = 0;
     const fi::Points& measured = options.camera ? part_points : scan.points;
@@ -362,6 +390,16 @@ int main(int argc, char** argv) {
       }
     }
     centroid /= static_cast<double>(std::max<std::size_t>(surface, 1));
+    const fi::InspectionResult result =
+        options.guess_deg >= 0.0 ? fi::inspectFrom(model,
+                                                   scan,
+                                                   guessNear(truth,
+                                                             truth * centroid,
+                                                             options.guess_deg,
+                                                             options.guess_shift * diagonal,
+                                                             config.seed),
+                                                   pipeline_config)
+                                 : fi::inspect(model, scan, pipeline_config);
     const double rotation = fi::bench::rotationErrorDeg(result.T_cad_scan, truth);
     const double translation = (result.T_cad_scan * centroid - truth * centroid).norm() / diagonal;
     const bool right = rotation < 2.0 && translation < 0.01;
