@@ -133,6 +133,16 @@ bool scanLeans(const std::vector<double>& a,
                double sigmas,
                double min_share = 0.0);
 
+/// @brief How far pose `b` lies from pose `a`: the angle of their relative turn and the distance
+/// between the places they move `reference` (scan frame) to.
+struct PoseDifference {
+  double angle = 0.0;  ///< [rad], in [0, π]
+  double shift = 0.0;  ///< [m]
+};
+PoseDifference poseDifference(const Eigen::Isometry3d& a,
+                              const Eigen::Isometry3d& b,
+                              const Eigen::Vector3d& reference);
+
 /// @brief True when two poses differ by more than `angle_deg` or move `reference` (scan frame)
 /// by more than `distance`.
 bool distinctPoses(const Eigen::Isometry3d& a,

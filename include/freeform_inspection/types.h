@@ -48,6 +48,11 @@ struct Status {
   }
 };
 
+/// True when the homogeneous transform `T` is rigid and finite: its rotation part orthonormal to
+/// `tolerance` (the largest entry of |RᵀR − I|) with determinant +1, its translation finite. A
+/// caller's pose is checked with it before it is used (an initial pose, a virtual sensor's).
+bool isRigidTransform(const Eigen::Matrix4d& T, double tolerance);
+
 using Points = std::vector<Eigen::Vector3d>;     ///< positions (metres once loaded) or unit vectors
 using Triangles = std::vector<Eigen::Vector3i>;  ///< vertex indices, counter-clockwise from outside
 

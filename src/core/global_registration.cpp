@@ -439,15 +439,14 @@ namespace {
 constexpr double kSeparateDeg = 10.0;
 constexpr double kSeparateCells = 3.0;
 
-// How far `b` lies from `a`: the angle of their relative turn [rad] and the shift of `reference`.
-std::pair<double, double> poseDifference(const Eigen::Isometry3d& a,
-                                         const Eigen::Isometry3d& b,
-                                         const Eigen::Vector3d& reference) {
+}  // namespace
+
+PoseDifference poseDifference(const Eigen::Isometry3d& a,
+                              const Eigen::Isometry3d& b,
+                              const Eigen::Vector3d& reference) {
   const Eigen::AngleAxisd relative(a.linear().transpose() * b.linear());
   return {std::abs(relative.angle()), (a * reference - b * reference).norm()};
 }
-
-}  // namespace
 
 bool distinctPoses(const Eigen::Isometry3d& a,
                    const Eigen::Isometry3d& b,

@@ -125,12 +125,7 @@ void validatePose(const VirtualScannerConfig& config, std::vector<std::string>& 
     }
     return;
   }
-  const Eigen::Matrix3d rotation = config.T_sensor_cad.linear();
-  const bool rigid =
-      config.T_sensor_cad.matrix().allFinite() &&
-      (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).norm() < kRotationTolerance &&
-      rotation.determinant() > 0.0;
-  if (!rigid) {
+  if (!isRigidTransform(config.T_sensor_cad.matrix(), kRotationTolerance)) {
     errors.push_back(
         "virtual_scanner.T_sensor_cad is not a finite rigid transform (rotation not orthonormal "
         "with determinant +1)");

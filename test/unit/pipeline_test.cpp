@@ -11,6 +11,7 @@
 #include "analytic_clouds.h"
 #include "analytic_shapes.h"
 #include "test_shapes.h"
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 namespace freeform_inspection {
@@ -20,6 +21,32 @@ const Eigen::Vector3d kHalf(0.05, 0.03, 0.02);
 
 Model boxModel() {
   return Model(test::makeBox(kHalf), "box", "test");
+}
+
+// The one rigidity check of a caller's pose (inspectFrom's initial pose, the virtual sensor's):
+// a turn and a shift pass; a scale, a mirror, a shear, a NaN or an infinite shift do not.
+TEST(RigidTransform, TellsATurnAndShiftFromWhatIsNone) {
+  Eigen::Matrix4d turned = Eigen::Matrix4d::Identity();
+  turned.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(2.0, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
+  turned.topRightCorner<3, 1>() = Eigen::Vector3d(0.3, -4.0, 12.0);
+  EXPECT_TRUE(isRigidTransform(turned, 1e-6));
+  EXPECT_TRUE(isRigidTransform(Eigen::Matrix4d::Identity(), 1e-6));
+  Eigen::Matrix4d scaled = turned;
+  scaled.topLeftCorner<3, 3>() *= 1.001;
+  EXPECT_FALSE(isRigidTransform(scaled, 1e-6));
+  EXPECT_TRUE(isRigidTransform(scaled, 1e-2)) << "within a looser tolerance";
+  Eigen::Matrix4d mirrored = turned;
+  mirrored.col(0) *= -1.0;
+  EXPECT_FALSE(isRigidTransform(mirrored, 1e-6)) << "determinant -1";
+  Eigen::Matrix4d sheared = turned;
+  sheared(0, 1) += 0.01;
+  EXPECT_FALSE(isRigidTransform(sheared, 1e-6));
+  Eigen::Matrix4d not_finite = turned;
+  not_finite(1, 3) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(isRigidTransform(not_finite, 1e-6));
+  not_finite(1, 3) = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(isRigidTransform(not_finite, 1e-6));
 }
 
 TEST(Inspect, FeaturelessScanFailsWithAReasonNeverAnIdentityPose) {
