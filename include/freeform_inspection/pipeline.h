@@ -65,13 +65,14 @@ struct PipelineConfig {
 /// @return one message per invalid field; empty when the configuration is valid.
 std::vector<std::string> validate(const PipelineConfig& config);
 
-/// Outcome of the registration, separate from the part's verdict.
-enum class RegistrationStatus { kOk, kAmbiguous, kFailed };
+/// Outcome of the registration, separate from the part's verdict. kFixed: not registered, the
+/// caller's pose taken as it is (inspectAt).
+enum class RegistrationStatus { kOk, kAmbiguous, kFailed, kFixed };
 
 /// The part's verdict. PASS/FAIL only after a registration that passed its quality gates.
 enum class Verdict { kPass, kFail, kNotEvaluated };
 
-const char* toString(RegistrationStatus status);  ///< "ok" | "ambiguous" | "failed"
+const char* toString(RegistrationStatus status);  ///< "ok" | "ambiguous" | "failed" | "fixed"
 const char* toString(Verdict verdict);            ///< "PASS" | "FAIL" | "NOT_EVALUATED"
 
 /// Sizes at each stage.
@@ -142,7 +143,9 @@ struct InspectionResult {
   double cad_curve_share = 0.0;
   /// inspectFrom(): how far the registered pose lies from the given one, the turn [deg] and the
   /// shift of the scan's centroid [m]: where the given pose is a fixture's nominal pose, how far
-  /// the part sat from it. NaN for inspect() and when no pose was registered.
+  /// the part sat from it. inspectAt(): how far the pose inspectFrom() would register lies from
+  /// the given one, which the deviation is measured at. NaN for inspect() and when no pose was
+  /// registered.
   double offset_from_initial_deg = std::numeric_limits<double>::quiet_NaN();
   double offset_from_initial = std::numeric_limits<double>::quiet_NaN();  ///< [m]
   /// How far the scan's noise leaves the pose free (pose_uncertainty.h); known once the
@@ -187,5 +190,20 @@ InspectionResult inspectFrom(const Model& model,
                              const Eigen::Isometry3d& initial_T_cad_scan,
                              const PipelineConfig& config,
                              const ProgressCallback& progress = {});
+
+/// @brief The inspection at a given pose, not registered (a fixture that locates the part: the
+/// deviation in the fixture's frame, where the part sitting off its seat is a deviation too).
+/// Registration status kFixed; T_cad_scan is `T_cad_scan` as given; the fit's numbers (RMS,
+/// fitness, surface on the CAD) are measured there and gate nothing. The verdict is judged as
+/// after a registration: NOT_EVALUATED when the scan does not cover the CAD there. How far the
+/// part sits from the pose is measured by inspectFrom()'s refinement and reported in
+/// offset_from_initial (NaN, with a warning, when no pose near it explains the scan); the pose
+/// covariance is not known (no fit).
+/// @return as inspect(); status kInvalidInput when the pose is not a finite rigid transform.
+InspectionResult inspectAt(const Model& model,
+                           const Scan& scan,
+                           const Eigen::Isometry3d& T_cad_scan,
+                           const PipelineConfig& config,
+                           const ProgressCallback& progress = {});
 
 }  // namespace freeform_inspection

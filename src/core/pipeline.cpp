@@ -94,6 +94,14 @@ struct Stopwatch {
   }
 };
 
+// How the scan is brought onto the CAD: searched (inspect), refined from a given pose
+// (inspectFrom) or inspected at it as it is (inspectAt).
+struct Alignment {
+  enum class Mode { kSearch, kRefine, kFixed };
+  Mode mode = Mode::kSearch;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // scan → CAD; unused when searched
+};
+
 // A caller's initial pose must be a rotation to this (largest entry of |RᵀR − I|): a pose pasted
 // from a report's 17 significant digits is one to 1e-15, a scaled one is not.
 constexpr double kInitialPoseRigidity = 1e-6;
@@ -1142,6 +1150,75 @@ void registerFrom(const Model& model,
   }
 }
 
+// The fixed alignment (inspectAt): the given pose as it is, its fit measured there and gating
+// nothing. Where the part lies is measured apart: registerFrom() from the pose into a scratch
+// result, for the offset alone, so the deviation stays in the given pose's frame while the report
+// says how much of it is the part sitting off that pose.
+void registerFixed(const Model& model,
+                   const Points& scan_points,
+                   const DescriptorResult& scan,
+                   bool oriented,
+                   const Eigen::Isometry3d& pose,
+                   const PipelineConfig& config,
+                   const ProgressCallback& progress,
+                   InspectionResult* result) {
+  InspectionResult refined;
+  refined.scan_noise = result->scan_noise;
+  registerFrom(model, scan_points, scan, oriented, pose, config, progress, &refined);
+  addTimings(refined.timings, &result->timings);
+  if (refined.status.code == StatusCode::kCancelled) {
+    result->status = refined.status;
+    return;
+  }
+  Stopwatch watch{result, &progress};
+  const double diagonal = model.bounds().diagonal();
+  const Points point_normals = oriented ? scan.pointNormals(scan_points.size()) : Points();
+  const IcpResult fit =
+      measureFit(model.query(), scan_points, pose, diagonal, config.icp, point_normals);
+  result->T_cad_scan = pose;
+  result->fitness = fit.fitness;
+  const VerificationSet set =
+      makeVerificationSet(scan.graph, config.registration.verification_points, oriented);
+  if (fit.status.ok() && fit.fitness > 0.0) {  // else no scan point lies near the CAD there
+    result->rmse = fit.rmse;
+    result->inlier_distance = fit.inlier_distance;
+    result->noise_sigma = fit.sigma;
+    result->surface_on_cad = surfaceOnCad(scan.graph,
+                                          scan_points,
+                                          model.query(),
+                                          pose,
+                                          fit.inlier_distance,
+                                          config.registration.verification_points,
+                                          /*min_links=*/3,
+                                          CurvedSurface());
+    result->score = verificationScore(
+        pose, set, model.query(), fit.inlier_distance, config.registration.normal_tolerance_deg);
+  }
+  watch.lap("verification");
+  result->registration = RegistrationStatus::kFixed;
+  result->status = Status::success();
+  result->status.message = "fixed alignment: the given pose, not registered";
+  if (refined.registration != RegistrationStatus::kOk) {
+    result->warnings.push_back(
+        "fixed alignment: no pose near the given one explains the scan, so how far the part sits "
+        "from it is not known (" +
+        refined.status.message + ")");
+    return;
+  }
+  const PoseDifference offset = poseDifference(pose, refined.T_cad_scan, set.centroid());
+  result->offset_from_initial_deg = offset.angle * 180.0 / kPi;
+  result->offset_from_initial = offset.shift;
+  // A part that sits off the pose by more than the band shows that as deviation everywhere.
+  const double band = std::min(config.tolerance.upper, -config.tolerance.lower);
+  if (offset.shift > band) {
+    result->warnings.push_back("fixed alignment: the part sits " + formatLength(offset.shift) +
+                               " and " + std::to_string(result->offset_from_initial_deg) +
+                               " deg from the given pose, more than the tolerance band's " +
+                               formatLength(band) +
+                               ": the deviations measure where it sits as well as its shape");
+  }
+}
+
 // registerScan(), and when no pose explained the scan, once more with `retry_candidates` per
 // feature, and where the features were few, with features whose r_max ball is cut down to half
 // the usual share: on a partial or noisy scan a feature's true place can rank below the first
@@ -1202,7 +1279,7 @@ void registerWidening(const Model& model,
 // or that the caller cancels.
 void runStages(const Model& model,
                const Scan& scan,
-               const Eigen::Isometry3d* initial,
+               const Alignment& alignment,
                const PipelineConfig& config,
                const ProgressCallback& progress,
                Stopwatch* watch,
@@ -1273,17 +1350,26 @@ void runStages(const Model& model,
   // A scanner's normals, a delivered mesh's winding and a range image's view point out of
   // the material; normals this pipeline estimated otherwise may not.
   const bool oriented = !scan.normals.empty() || !scan.faces.empty() || !hints.normals.empty();
-  if (initial != nullptr) {
-    registerFrom(
-        model, cleaned.scan.points, descriptors, oriented, *initial, config, progress, result);
-  } else {
-    registerWidening(model, cleaned.scan.points, descriptors, oriented, config, progress, result);
+  const Points& points = cleaned.scan.points;
+  switch (alignment.mode) {
+    case Alignment::Mode::kSearch:
+      registerWidening(model, points, descriptors, oriented, config, progress, result);
+      break;
+    case Alignment::Mode::kRefine:
+      registerFrom(model, points, descriptors, oriented, alignment.pose, config, progress, result);
+      break;
+    case Alignment::Mode::kFixed:
+      registerFixed(model, points, descriptors, oriented, alignment.pose, config, progress, result);
+      break;
   }
   if (result->registration == RegistrationStatus::kFailed || !watch->proceed("deviation", 0.9)) {
     return;
   }
   watch->start = Clock::now();
   measurePart(model, cleaned.scan, descriptors, config, result);
+  if (alignment.mode == Alignment::Mode::kFixed) {
+    result->pose_uncertainty = PoseUncertainty();  // no fit, so no spread of one
+  }
   watch->lap("deviation");
 }
 
@@ -1297,6 +1383,8 @@ const char* toString(RegistrationStatus status) {
       return "ambiguous";
     case RegistrationStatus::kFailed:
       return "failed";
+    case RegistrationStatus::kFixed:
+      return "fixed";
   }
   return "failed";
 }
@@ -1371,7 +1459,7 @@ namespace {
 
 InspectionResult run(const Model& model,
                      const Scan& scan,
-                     const Eigen::Isometry3d* initial,
+                     const Alignment& alignment,
                      const PipelineConfig& config,
                      const ProgressCallback& progress) {
   const auto errors = validate(config);
@@ -1388,13 +1476,15 @@ InspectionResult run(const Model& model,
         StatusCode::kInvalidInput,
         "the model's descriptors were computed with other descriptor settings than this "
         "inspection's: load the model with the pipeline's descriptor settings");
-  } else if (initial != nullptr && !isRigidTransform(initial->matrix(), kInitialPoseRigidity)) {
-    result.status = Status::failure(StatusCode::kInvalidInput,
-                                    "the initial pose is not a rigid transform (a finite "
-                                    "rotation with orthonormal axes, determinant +1, and a "
-                                    "finite translation)");
+  } else if (alignment.mode != Alignment::Mode::kSearch &&
+             !isRigidTransform(alignment.pose.matrix(), kInitialPoseRigidity)) {
+    result.status = Status::failure(
+        StatusCode::kInvalidInput,
+        std::string(alignment.mode == Alignment::Mode::kFixed ? "the fixed" : "the initial") +
+            " pose is not a rigid transform (a finite rotation with orthonormal axes, "
+            "determinant +1, and a finite translation)");
   } else if (watch.proceed("clean", 0.0)) {
-    runStages(model, scan, initial, config, progress, &watch, &result);
+    runStages(model, scan, alignment, config, progress, &watch, &result);
   }
   judge(config, &result);
   result.timings.push_back({"total", secondsSince(start)});
@@ -1407,7 +1497,7 @@ InspectionResult inspect(const Model& model,
                          const Scan& scan,
                          const PipelineConfig& config,
                          const ProgressCallback& progress) {
-  return run(model, scan, nullptr, config, progress);
+  return run(model, scan, Alignment(), config, progress);
 }
 
 InspectionResult inspectFrom(const Model& model,
@@ -1415,7 +1505,15 @@ InspectionResult inspectFrom(const Model& model,
                              const Eigen::Isometry3d& initial_T_cad_scan,
                              const PipelineConfig& config,
                              const ProgressCallback& progress) {
-  return run(model, scan, &initial_T_cad_scan, config, progress);
+  return run(model, scan, {Alignment::Mode::kRefine, initial_T_cad_scan}, config, progress);
+}
+
+InspectionResult inspectAt(const Model& model,
+                           const Scan& scan,
+                           const Eigen::Isometry3d& T_cad_scan,
+                           const PipelineConfig& config,
+                           const ProgressCallback& progress) {
+  return run(model, scan, {Alignment::Mode::kFixed, T_cad_scan}, config, progress);
 }
 
 }  // namespace freeform_inspection

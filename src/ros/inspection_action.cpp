@@ -68,6 +68,7 @@ Inspect::Request toRequest(const freeform_inspection::InspectGoal& goal) {
   request.tolerance_upper = goal.tolerance_upper;
   request.tolerance_lower = goal.tolerance_lower;
   request.initial_guess = goal.initial_guess;
+  request.alignment = goal.alignment;
   return request;
 }
 

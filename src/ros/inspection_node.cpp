@@ -363,14 +363,26 @@ std::optional<InspectionReport> InspectionNode::initialPose(
     const std_msgs::Header& scan_header,
     std::optional<Eigen::Isometry3d>* pose) const {
   const geometry_msgs::TransformStamped& guess = request.initial_guess;
-  if (guess.header.frame_id.empty()) {
-    return std::nullopt;  // search from scratch
-  }
   const auto refused = [&scan_header](const std::string& code, const std::string& message) {
     InspectionReport report = errorReport(code, message);
     report.header = scan_header;
     return report;
   };
+  if (request.alignment > Inspect::Request::ALIGN_FIXED) {
+    return refused("INVALID_INPUT",
+                   "alignment " + std::to_string(request.alignment) +
+                       " is none of ALIGN_AUTO (0), ALIGN_ICP_ONLY (1), ALIGN_FIXED (2)");
+  }
+  if (guess.header.frame_id.empty()) {
+    if (request.alignment != Inspect::Request::ALIGN_AUTO) {
+      return refused(
+          "INVALID_INPUT",
+          std::string(request.alignment == Inspect::Request::ALIGN_FIXED ? "ALIGN_FIXED"
+                                                                         : "ALIGN_ICP_ONLY") +
+              " needs initial_guess (its header.frame_id is empty)");
+    }
+    return std::nullopt;  // search from scratch
+  }
   if (!guess.child_frame_id.empty() && guess.child_frame_id != config_.part_frame) {
     return refused("INVALID_INPUT",
                    "initial_guess.child_frame_id is '" + guess.child_frame_id +
@@ -476,8 +488,10 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
                  kInspectingProgress + fraction * (kPublishingProgress - kInspectingProgress));
   };
   fi::InspectionResult result =
-      initial ? fi::inspectFrom(*model, converted.scan, *initial, pipeline, core_stage)
-              : fi::inspect(*model, converted.scan, pipeline, core_stage);
+      !initial ? fi::inspect(*model, converted.scan, pipeline, core_stage)
+      : request.alignment == Inspect::Request::ALIGN_FIXED
+          ? fi::inspectAt(*model, converted.scan, *initial, pipeline, core_stage)
+          : fi::inspectFrom(*model, converted.scan, *initial, pipeline, core_stage);
   // fixed → scan → CAD (unchanged without a fixed frame; a failed one stays the identity)
   if (result.registration != fi::RegistrationStatus::kFailed) {
     result.T_cad_scan = result.T_cad_scan * T_fixed_scan.inverse();
@@ -537,7 +551,10 @@ void InspectionNode::publish(const fi::InspectionResult& result,
   if (result.registration == fi::RegistrationStatus::kFailed) {
     return;  // no pose: nothing to place in the part frame
   }
-  if (result.registration == fi::RegistrationStatus::kOk) {
+  // A fixed pose goes on tf too, so the deviation cloud below is drawn where it was measured;
+  // ~pose carries a registered pose's covariance, which a fixed one does not have.
+  const bool fixed = result.registration == fi::RegistrationStatus::kFixed;
+  if (result.registration == fi::RegistrationStatus::kOk || fixed) {
     if (config_.publish_tf) {
       if (config_.tf_static) {
         tf_static_broadcaster_.sendTransform(report.transform);
@@ -545,7 +562,9 @@ void InspectionNode::publish(const fi::InspectionResult& result,
         tf_broadcaster_.sendTransform(report.transform);
       }
     }
-    pose_pub_.publish(poseWithCovariance(report));
+    if (!fixed) {
+      pose_pub_.publish(poseWithCovariance(report));
+    }
   }
   std_msgs::Header part_header = report.header;
   part_header.frame_id = config_.part_frame;

@@ -114,7 +114,8 @@ class InspectionNode {
       const freeform_inspection::Inspect::Request& request, ScanMessage* scan) const;
   /// The request's initial_guess as T_cad_scan of a scan in `scan_frame` at `stamp` (in *pose;
   /// left empty when the request gives none), or the refusal: a rotation that is no unit
-  /// quaternion, another child frame than ~part_frame, a frame tf cannot move into the scan's.
+  /// quaternion, another child frame than ~part_frame, a frame tf cannot move into the scan's,
+  /// an alignment that needs a guess without one, an unknown alignment.
   std::optional<freeform_inspection::InspectionReport> initialPose(
       const freeform_inspection::Inspect::Request& request,
       const std_msgs::Header& scan_header,

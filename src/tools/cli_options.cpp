@@ -72,14 +72,15 @@ std::string apply(const std::string& flag, const std::string& value, CliOptions*
     *scale->second = *number;
     return "";
   }
-  if (flag == "--initial-pose") {
+  if (flag == "--initial-pose" || flag == "--fixed-pose") {
     const auto pose = parsePose(value);
     if (!pose) {
-      return "--initial-pose needs the scan-to-CAD transform as 12 numbers (its first three rows, "
+      return flag +
+             " needs the scan-to-CAD transform as 12 numbers (its first three rows, "
              "row-major) or 16 ending in 0 0 0 1, got '" +
              value + "'";
     }
-    options->initial_pose = *pose;
+    (flag == "--initial-pose" ? options->initial_pose : options->fixed_pose) = *pose;
     return "";
   }
   if (flag == "--tolerance") {
@@ -117,6 +118,11 @@ CliParseResult parseCliOptions(const std::vector<std::string>& args) {
   if (options.cad_path.empty() || options.scan_path.empty()) {
     return {std::nullopt, "both --cad and --scan are required (see --help)"};
   }
+  if (!options.initial_pose.empty() && !options.fixed_pose.empty()) {
+    return {std::nullopt,
+            "--initial-pose (refine the pose) and --fixed-pose (inspect at it as it is) exclude "
+            "each other"};
+  }
   return {options, ""};
 }
 
@@ -125,11 +131,13 @@ std::string cliUsage() {
          "                        [--cad-scale S] [--scan-scale S] [--tolerance T]\n"
          "                        [--config FILE.yaml] [--report OUT.json] [--deviation OUT.ply]\n"
          "                        [--html OUT.html] [--model-cache DIR | --no-model-cache]\n"
-         "                        [--initial-pose \"R11 R12 R13 TX R21 ... TZ\"]\n"
+         "                        [--initial-pose \"R11 R12 R13 TX R21 ... TZ\" |\n"
+         "                         --fixed-pose \"R11 R12 R13 TX R21 ... TZ\"]\n"
          "\n"
          "Registers the scan to the CAD model from any pose and prints one JSON object.\n"
          "--initial-pose refines a known scan-to-CAD transform (a fixture's nominal pose; the\n"
-         "report's transform_cad_from_scan pasted as it is) by ICP instead of searching.\n"
+         "report's transform_cad_from_scan pasted as it is) by ICP instead of searching;\n"
+         "--fixed-pose inspects at the transform as it is, not registered (a locating fixture).\n"
          "--deviation writes the coloured deviation map (PLY, CAD frame) when the scan was\n"
          "registered; --html writes a self-contained report for people (docs/reports.md).\n"
          "Lengths are metres after scaling: --cad-scale 0.001 reads a CAD file in millimetres,\n"

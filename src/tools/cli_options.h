@@ -24,6 +24,9 @@ struct CliOptions {
   /// --initial-pose: the scan → CAD transform to refine instead of searching, row-major, its
   /// first three rows (12 numbers; a fourth row 0 0 0 1 may follow). Empty: search.
   std::vector<double> initial_pose;
+  /// --fixed-pose: the scan → CAD transform to inspect at as it is (no registration), in
+  /// --initial-pose's form. Empty: none. At most one of the two is given.
+  std::vector<double> fixed_pose;
   bool help = false;  ///< --help
 };
 

@@ -111,15 +111,29 @@ fi::Status writeOutputs(const fi::CliOptions& options,
   return fi::Status::success();
 }
 
-// --initial-pose's 12 numbers as a transform (the core checks that it is rigid).
-Eigen::Isometry3d initialPose(const fi::CliOptions& options) {
+// --initial-pose's or --fixed-pose's 12 numbers as a transform (the core checks that it is
+// rigid).
+Eigen::Isometry3d toPose(const std::vector<double>& numbers) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   for (int row = 0; row < 3; ++row) {
     for (int col = 0; col < 4; ++col) {
-      pose.matrix()(row, col) = options.initial_pose[static_cast<std::size_t>(4 * row + col)];
+      pose.matrix()(row, col) = numbers[static_cast<std::size_t>(4 * row + col)];
     }
   }
   return pose;
+}
+
+fi::InspectionResult inspectScan(const fi::CliOptions& options,
+                                 const fi::Model& model,
+                                 const fi::Scan& scan,
+                                 const fi::PipelineConfig& config) {
+  if (!options.fixed_pose.empty()) {
+    return fi::inspectAt(model, scan, toPose(options.fixed_pose), config);
+  }
+  if (!options.initial_pose.empty()) {
+    return fi::inspectFrom(model, scan, toPose(options.initial_pose), config);
+  }
+  return fi::inspect(model, scan, config);
 }
 
 int run(const fi::CliOptions& options) {
@@ -142,10 +156,7 @@ int run(const fi::CliOptions& options) {
     return refuse(scan.status.message);
   }
   const double load_seconds = secondsSince(start);
-  fi::InspectionResult result =
-      options.initial_pose.empty()
-          ? fi::inspect(*model.model, scan.scan, config.config)
-          : fi::inspectFrom(*model.model, scan.scan, initialPose(options), config.config);
+  fi::InspectionResult result = inspectScan(options, *model.model, scan.scan, config.config);
   result.counts.non_finite += scan.non_finite_removed;
   result.warnings.insert(result.warnings.begin(), model.warnings.begin(), model.warnings.end());
   result.warnings.insert(result.warnings.end(), scan.warnings.begin(), scan.warnings.end());

@@ -145,6 +145,22 @@ TEST(InspectAction, InitialGuessTravelsWithTheGoal) {
       << client.getState().getText();
 }
 
+// The goal's alignment reaches the node too: ALIGN_FIXED without a guess is refused naming it.
+TEST(InspectAction, AlignmentTravelsWithTheGoal) {
+  Client client(nodeName() + "/inspect_action", false);
+  ASSERT_TRUE(client.waitForServer(kWait));
+  FeedbackLog log;
+  InspectGoal goal = goalFor(sampleCloud(), "fixed");
+  goal.alignment = InspectGoal::ALIGN_FIXED;
+  send(&client, goal, &log);
+  ASSERT_TRUE(client.waitForResult(kInspectWait));
+  EXPECT_EQ(client.getState(), State::ABORTED) << client.getState().getText();
+  ASSERT_TRUE(client.getResult());
+  EXPECT_EQ(client.getResult()->report.error_code, "INVALID_INPUT");
+  EXPECT_NE(client.getState().getText().find("ALIGN_FIXED"), std::string::npos)
+      << client.getState().getText();
+}
+
 TEST(InspectAction, CancelDuringTheInspectionEndsPreemptedWhenTheStageEndsAndPublishesNothing) {
   Client client(nodeName() + "/inspect_action", false);
   ASSERT_TRUE(client.waitForServer(kWait));

@@ -220,6 +220,49 @@ TEST(InspectionNode, InitialGuessIsRefinedWithoutASearch) {
   EXPECT_NE(wrong_child.message.find("'part'"), std::string::npos) << wrong_child.message;
 }
 
+// ALIGN_FIXED: the deviation at initial_guess as it is (a locating fixture). At the sample's true
+// pose PASS; 1 mm off its seat FAIL, the pose still the guess, the offset 1 mm. ALIGN_ICP_ONLY
+// and ALIGN_FIXED need a guess; an unknown alignment is refused.
+TEST(InspectionNode, FixedAlignmentInspectsAtTheGuessAsItIs) {
+  const Eigen::Isometry3d truth = sampleTruth();  // T_cad_scan
+  Inspect::Request request = cloudRequest(sampleCloud());
+  request.alignment = Inspect::Request::ALIGN_FIXED;
+  request.initial_guess = tf2::eigenToTransform(truth.inverse());  // part in the scan frame
+  request.initial_guess.header.frame_id = "scanner";
+  const Inspect::Response at_truth = callInspect(request);
+  EXPECT_EQ(at_truth.status, Inspect::Response::PASS) << at_truth.message;
+  EXPECT_EQ(at_truth.report.registration_status, "fixed") << at_truth.message;
+  EXPECT_LT(at_truth.report.offset_from_guess_deg, 0.1);
+  EXPECT_LT(at_truth.report.offset_from_guess, 0.0001);
+  expectSamplePose(tf2::transformToEigen(at_truth.report.transform), "fixed at the truth");
+
+  Eigen::Isometry3d off_seat = Eigen::Isometry3d::Identity();
+  off_seat.translation() = Eigen::Vector3d(0.001, 0.0, 0.0);  // 1 mm along the CAD's x
+  Inspect::Request shifted = request;
+  shifted.initial_guess = tf2::eigenToTransform((off_seat * truth).inverse());
+  shifted.initial_guess.header.frame_id = "scanner";
+  const Inspect::Response moved = callInspect(shifted);
+  EXPECT_EQ(moved.status, Inspect::Response::FAIL) << moved.message;
+  EXPECT_EQ(moved.report.registration_status, "fixed");
+  EXPECT_NEAR(moved.report.offset_from_guess, 0.001, 0.0001);
+  const Eigen::Isometry3d reported = tf2::transformToEigen(moved.report.transform);  // scan → part
+  EXPECT_LT((reported.inverse().matrix() - (off_seat * truth).matrix()).cwiseAbs().maxCoeff(), 1e-9)
+      << "the pose is the guess, not a fit";
+
+  Inspect::Request no_guess = cloudRequest(sampleCloud());
+  no_guess.alignment = Inspect::Request::ALIGN_FIXED;
+  const auto fixed_without = callInspect(no_guess);
+  EXPECT_EQ(fixed_without.report.error_code, "INVALID_INPUT");
+  EXPECT_NE(fixed_without.message.find("ALIGN_FIXED needs initial_guess"), std::string::npos)
+      << fixed_without.message;
+  no_guess.alignment = Inspect::Request::ALIGN_ICP_ONLY;
+  EXPECT_EQ(callInspect(no_guess).report.error_code, "INVALID_INPUT");
+  no_guess.alignment = 7;
+  const auto unknown = callInspect(no_guess);
+  EXPECT_EQ(unknown.report.error_code, "INVALID_INPUT");
+  EXPECT_NE(unknown.message.find("alignment 7"), std::string::npos) << unknown.message;
+}
+
 TEST(InspectionNode, RefusesBadRequestsWithReasonsAndKeepsServing) {
   const auto empty = callInspect(cloudRequest(toCloud({}, "scanner")));
   EXPECT_EQ(empty.status, Inspect::Response::ERROR);

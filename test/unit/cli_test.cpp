@@ -181,6 +181,55 @@ TEST(Cli, InitialPoseIsRefinedWithoutTheSearch) {
   EXPECT_NE(refused.err.find("rigid"), std::string::npos) << refused.err;
 }
 
+// --fixed-pose: the deviation at the given pose, not registered (a locating fixture). The pose is
+// reported as given; how far the part sits from it is measured apart (offset_from_initial).
+TEST(Cli, FixedPoseIsInspectedAsItIs) {
+  const Eigen::Matrix4d truth = sampleTruth();
+  const std::string args = "--cad " + kBladeFine + " --cad-scale 0.001 --scan " + kScan +
+                           " --tolerance 0.0002 --fixed-pose ";
+  const CliRun at_truth = runCli(args + poseArgument(truth));
+  ASSERT_EQ(at_truth.exit_code, 0) << at_truth.err;
+  const nlohmann::json json = nlohmann::json::parse(at_truth.out);
+  EXPECT_EQ(json["status"], "fixed") << json["message"];
+  EXPECT_EQ(json["verdict"], "PASS") << json["verdict_reason"];
+  EXPECT_LT((reportedPose(json) - truth).cwiseAbs().maxCoeff(), 1e-12) << "the pose as given";
+  EXPECT_LT(json["offset_from_initial"]["rotation_deg"].get<double>(), 0.1);
+  EXPECT_LT(json["offset_from_initial"]["translation"].get<double>(), 0.0001);
+  EXPECT_TRUE(json["pose_uncertainty"].is_null()) << "no fit, no covariance";
+  EXPECT_FALSE(json["timings_s"].contains("global_registration"));
+  EXPECT_LT(json["rmse"].get<double>(), 0.0001);
+  // The part 1 mm off its seat along the CAD's x: FAIL at the given pose, which stays as given,
+  // and the offset says how far it sits.
+  Eigen::Matrix4d shifted = truth;
+  shifted(0, 3) += 0.001;
+  const CliRun off_seat = runCli(args + poseArgument(shifted));
+  ASSERT_EQ(off_seat.exit_code, 0) << off_seat.err;
+  const nlohmann::json off_json = nlohmann::json::parse(off_seat.out);
+  EXPECT_EQ(off_json["status"], "fixed");
+  EXPECT_EQ(off_json["verdict"], "FAIL") << off_json["verdict_reason"];
+  EXPECT_LT((reportedPose(off_json) - shifted).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_NEAR(off_json["offset_from_initial"]["translation"].get<double>(), 0.001, 0.0001);
+  EXPECT_NE(off_json["warnings"].dump().find("sits"), std::string::npos) << off_json["warnings"];
+  // Half a metre off: nothing of the scan on the CAD there, not evaluated, the offset unknown.
+  shifted(0, 3) += 0.5;
+  const CliRun away = runCli(args + poseArgument(shifted));
+  ASSERT_EQ(away.exit_code, 0) << away.err;
+  const nlohmann::json away_json = nlohmann::json::parse(away.out);
+  EXPECT_EQ(away_json["verdict"], "NOT_EVALUATED") << away_json["verdict_reason"];
+  EXPECT_TRUE(away_json["offset_from_initial"]["translation"].is_null());
+  EXPECT_TRUE(away_json["rmse"].is_null());
+  // Refining and fixing the pose at once is a usage error.
+  const CliRun both = runCli(args + poseArgument(truth) + " --initial-pose " + poseArgument(truth));
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_EQ(lineCount(both.err), 1) << both.err;
+  EXPECT_NE(both.err.find("exclude"), std::string::npos) << both.err;
+  Eigen::Matrix4d mirrored = truth;
+  mirrored.col(0) *= -1.0;
+  const CliRun refused = runCli(args + poseArgument(mirrored));
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("fixed pose is not a rigid"), std::string::npos) << refused.err;
+}
+
 TEST(Cli, MissingCadExitsTwoNamingTheFile) {
   const CliRun run = runCli("--cad /nonexistent/cad.stl --scan " + kScan);
   EXPECT_EQ(run.exit_code, 2);

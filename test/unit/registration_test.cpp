@@ -292,6 +292,46 @@ TEST(Registration, InitialPoseOnANearTwinIsProbedBackToTheTruth) {
   EXPECT_NEAR(result.offset_from_initial_deg, 15.0, 1.0);
 }
 
+// The fixed alignment (inspectAt): the deviation at the given pose as it is. At the truth the
+// deviation is the noise; 2 % of L off, it is the offset as well, which inspectFrom() from the
+// same pose would have fitted away, and the offset says so.
+TEST(Registration, FixedPoseIsInspectedWhereItIsGiven) {
+  const Model& model = blade();
+  const double diagonal = model.bounds().diagonal();
+  const double sigma = 0.002 * diagonal;
+  const SyntheticScan truth = makeCase(model, caseConfig(3, 0.002, true, 0.0));
+  const InspectionResult at_truth =
+      inspectAt(model, truth.scan, truth.T_cad_scan, PipelineConfig());
+  ASSERT_EQ(at_truth.registration, RegistrationStatus::kFixed) << at_truth.status.message;
+  EXPECT_TRUE(at_truth.status.ok());
+  EXPECT_TRUE(at_truth.T_cad_scan.isApprox(truth.T_cad_scan, 1e-15));
+  EXPECT_GT(at_truth.deviation.rms, 0.8 * sigma);
+  EXPECT_LT(at_truth.deviation.rms, 1.1 * sigma);
+  EXPECT_LT(at_truth.offset_from_initial_deg, 0.3);
+  EXPECT_LT(at_truth.offset_from_initial, 0.002 * diagonal);
+  EXPECT_FALSE(at_truth.pose_uncertainty.known);
+  EXPECT_EQ(at_truth.counts.features, 0u);
+  EXPECT_NE(at_truth.verdict, Verdict::kNotEvaluated) << at_truth.verdict_reason;
+  Eigen::Isometry3d off_seat = Eigen::Isometry3d::Identity();
+  off_seat.translation() = 0.02 * diagonal * Eigen::Vector3d(0.0, 0.6, 0.8);
+  const Eigen::Isometry3d given = off_seat * truth.T_cad_scan;
+  const InspectionResult fixed = inspectAt(model, truth.scan, given, PipelineConfig());
+  ASSERT_EQ(fixed.registration, RegistrationStatus::kFixed) << fixed.status.message;
+  EXPECT_TRUE(fixed.T_cad_scan.isApprox(given, 1e-15));
+  EXPECT_GT(fixed.deviation.rms, 3.0 * sigma) << "the offset shows as deviation";
+  EXPECT_NEAR(fixed.offset_from_initial, 0.02 * diagonal, 0.002 * diagonal);
+  const InspectionResult refined = inspectFrom(model, truth.scan, given, PipelineConfig());
+  ASSERT_EQ(refined.registration, RegistrationStatus::kOk) << refined.status.message;
+  EXPECT_LT(refined.deviation.rms, 1.1 * sigma) << "refined, the offset is fitted away";
+  EXPECT_NEAR(refined.offset_from_initial, fixed.offset_from_initial, 1e-9);
+  Eigen::Isometry3d sheared = truth.T_cad_scan;
+  sheared.linear()(0, 1) += 0.01;
+  const InspectionResult refused = inspectAt(model, truth.scan, sheared, PipelineConfig());
+  EXPECT_EQ(refused.status.code, StatusCode::kInvalidInput);
+  EXPECT_NE(refused.status.message.find("fixed pose"), std::string::npos) << refused.status.message;
+  EXPECT_EQ(refused.verdict, Verdict::kNotEvaluated);
+}
+
 // Clutter beside the part that is no plane (a clamp: a block of points), twice the part's points:
 // no pose explains the scan; input.crop_box, set around where the part lies in the scan's frame
 // (as a fixed scanner's integrator sets it once), takes it away and the part registers.
