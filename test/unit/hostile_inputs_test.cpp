@@ -130,6 +130,46 @@ TEST(HostileScans, AllPointsIdenticalIsCollinearNotACrash) {
   expectSampleStillRegisters();
 }
 
+// A given pose changes nothing about what a scan must be: inspectFrom() and inspectAt() refuse
+// the bad scans above as inspect() does, with the same code and reason, never a pose or verdict.
+TEST(HostileScans, AGivenPoseRefusesTheSameBadScans) {
+  const double inf = std::numeric_limits<double>::infinity();
+  Scan huge = pointsOnly(sample().points);
+  for (auto& p : huge.points) {
+    p *= 1e7;
+  }
+  struct Case {
+    const char* name;
+    Scan scan;
+    StatusCode code;
+    const char* words;
+  };
+  const std::vector<Case> cases = {
+      {"all inf", pointsOnly({{inf, 0, 0}, {0, -inf, 0}}), StatusCode::kInvalidInput, "no finite"},
+      {"two points",
+       pointsOnly({{0, 0, 0}, {0.05, 0.01, 0}}),
+       StatusCode::kDegenerateInput,
+       "2 finite points"},
+      {"identical points",
+       pointsOnly(Points(5000, Eigen::Vector3d(0.01, 0.02, 0.03))),
+       StatusCode::kDegenerateInput,
+       "collinear"},
+      {"1e6 m", huge, StatusCode::kUnitsMismatch, "check the units"},
+  };
+  const Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  for (const Case& c : cases) {
+    expectRefused(inspectFrom(blade(), c.scan, pose, PipelineConfig()),
+                  c.code,
+                  c.words,
+                  std::string(c.name) + ", refined");
+    expectRefused(inspectAt(blade(), c.scan, pose, PipelineConfig()),
+                  c.code,
+                  c.words,
+                  std::string(c.name) + ", fixed");
+  }
+  expectSampleStillRegisters();
+}
+
 TEST(HostileScans, HalfThePointsDuplicatedStillRegisters) {
   // Duplicates (a driver that sends a frame twice, overlapping views merged) must not break the
   // neighbourhoods: zero distances, repeated neighbours.
