@@ -216,14 +216,17 @@ void measurePart(const Model& model,
   result->conformance = conformanceZones(map, surface, config);
   noteChordError(model, map, distances.faces, config, result);
   result->scan_faces = scan.faces;
-  // A band narrower than the residual noise of the fit flags scattered points, not the part.
+  // A band narrower than the residual noise of the fit flags scattered points, not the part. At
+  // a fixed pose the residual holds the part's offset from the pose too: the scan's own noise.
   const double band = std::min(config.tolerance.upper, -config.tolerance.lower);
-  if (std::isfinite(result->noise_sigma) && band < 3.0 * result->noise_sigma) {
-    result->warnings.push_back("the tolerance band (" + formatLength(config.tolerance.lower) +
-                               " to " + formatLength(config.tolerance.upper) +
-                               ") is narrower than 3x the fit's residual noise (sigma " +
-                               formatLength(result->noise_sigma) +
-                               "): scattered points fall outside it by noise alone");
+  const bool fixed = result->registration == RegistrationStatus::kFixed;
+  const double noise = fixed ? result->scan_noise : result->noise_sigma;
+  if (std::isfinite(noise) && band < 3.0 * noise) {
+    result->warnings.push_back(
+        "the tolerance band (" + formatLength(config.tolerance.lower) + " to " +
+        formatLength(config.tolerance.upper) + ") is narrower than 3x " +
+        (fixed ? "the scan's own noise" : "the fit's residual noise") + " (sigma " +
+        formatLength(noise) + "): scattered points fall outside it by noise alone");
   }
 }
 

@@ -210,6 +210,9 @@ TEST(Cli, FixedPoseIsInspectedAsItIs) {
   EXPECT_LT((reportedPose(off_json) - shifted).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_NEAR(off_json["offset_from_initial"]["translation"].get<double>(), 0.001, 0.0001);
   EXPECT_NE(off_json["warnings"].dump().find("sits"), std::string::npos) << off_json["warnings"];
+  // The residual there is mostly the offset: the band is weighed against the scan's own noise.
+  EXPECT_EQ(off_json["warnings"].dump().find("narrower than 3x"), std::string::npos)
+      << off_json["warnings"];
   // Half a metre off: nothing of the scan on the CAD there, not evaluated, the offset unknown.
   shifted(0, 3) += 0.5;
   const CliRun away = runCli(args + poseArgument(shifted));
