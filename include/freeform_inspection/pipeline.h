@@ -69,7 +69,8 @@ std::vector<std::string> validate(const PipelineConfig& config);
 /// caller's pose taken as it is (inspectAt).
 enum class RegistrationStatus { kOk, kAmbiguous, kFailed, kFixed };
 
-/// The part's verdict. PASS/FAIL only after a registration that passed its quality gates.
+/// The part's verdict. PASS/FAIL only after a registration that passed its quality gates, or at
+/// a pose the caller fixed (inspectAt).
 enum class Verdict { kPass, kFail, kNotEvaluated };
 
 const char* toString(RegistrationStatus status);  ///< "ok" | "ambiguous" | "failed" | "fixed"
