@@ -5,6 +5,8 @@
 // be inspected, PREEMPTED on cancel (after the running stage, with nothing published) and on a
 // newer goal, which then runs.
 #include <algorithm>
+#include <functional>
+#include <memory>
 #include <mutex>
 #include <set>
 #include <string>
@@ -30,31 +32,42 @@ using State = actionlib::SimpleClientGoalState;
 using Client = actionlib::SimpleActionClient<InspectAction>;
 using namespace freeform_inspection_rostest;  // NOLINT(google-build-using-namespace): test helpers
 
-// The feedback of one goal, as it arrives on the client's spinner threads.
+// The feedback of one goal, as it arrives on the client's spinner threads. The entries are
+// shared with the client's callback: a feedback message may be handled after the result (they
+// come on separate topics), when the test that owned this log has returned.
 class FeedbackLog {
  public:
-  void add(const InspectFeedback& feedback) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stages_.push_back(feedback.stage);
-    progress_.push_back(feedback.progress);
-  }
+  void add(const InspectFeedback& feedback) { entries_->add(feedback); }
   bool seen(const std::string& stage) const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return std::find(stages_.begin(), stages_.end(), stage) != stages_.end();
+    std::lock_guard<std::mutex> lock(entries_->mutex);
+    return std::find(entries_->stages.begin(), entries_->stages.end(), stage) !=
+           entries_->stages.end();
   }
   std::set<std::string> distinctStages() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return {stages_.begin(), stages_.end()};
+    std::lock_guard<std::mutex> lock(entries_->mutex);
+    return {entries_->stages.begin(), entries_->stages.end()};
   }
   std::vector<float> progress() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return progress_;
+    std::lock_guard<std::mutex> lock(entries_->mutex);
+    return entries_->progress;
+  }
+  /// For a callback that may outlive this log.
+  std::function<void(const InspectFeedback&)> recorder() const {
+    return [entries = entries_](const InspectFeedback& feedback) { entries->add(feedback); };
   }
 
  private:
-  mutable std::mutex mutex_;
-  std::vector<std::string> stages_;
-  std::vector<float> progress_;
+  struct Entries {
+    void add(const InspectFeedback& feedback) {
+      std::lock_guard<std::mutex> lock(mutex);
+      stages.push_back(feedback.stage);
+      progress.push_back(feedback.progress);
+    }
+    std::mutex mutex;
+    std::vector<std::string> stages;
+    std::vector<float> progress;
+  };
+  std::shared_ptr<Entries> entries_ = std::make_shared<Entries>();
 };
 
 InspectGoal goalFor(const sensor_msgs::PointCloud2& cloud, const std::string& part_id) {
@@ -73,7 +86,9 @@ void send(Client* client, const InspectGoal& goal, FeedbackLog* log) {
       goal,
       Client::SimpleDoneCallback(),
       Client::SimpleActiveCallback(),
-      [log](const freeform_inspection::InspectFeedbackConstPtr& feedback) { log->add(*feedback); });
+      [record = log->recorder()](const freeform_inspection::InspectFeedbackConstPtr& feedback) {
+        record(*feedback);
+      });
 }
 
 std::string stagesText(const FeedbackLog& log) {
