@@ -1205,17 +1205,17 @@ void registerFixed(const Model& model,
         refined.status.message + ")");
     return;
   }
-  const PoseDifference offset = poseDifference(pose, refined.T_cad_scan, set.centroid());
-  result->offset_from_initial_deg = offset.angle * 180.0 / kPi;
-  result->offset_from_initial = offset.shift;
+  // registerFrom() measured the offset from `pose`, its initial pose, at the same centroid.
+  result->offset_from_initial_deg = refined.offset_from_initial_deg;
+  result->offset_from_initial = refined.offset_from_initial;
   // A part that sits off the pose by more than the band shows that as deviation everywhere.
   const double band = std::min(config.tolerance.upper, -config.tolerance.lower);
-  if (offset.shift > band) {
-    result->warnings.push_back("fixed alignment: the part sits " + formatLength(offset.shift) +
-                               " and " + std::to_string(result->offset_from_initial_deg) +
-                               " deg from the given pose, more than the tolerance band's " +
-                               formatLength(band) +
-                               ": the deviations measure where it sits as well as its shape");
+  if (result->offset_from_initial > band) {
+    result->warnings.push_back(
+        "fixed alignment: the part sits " + formatLength(result->offset_from_initial) + " and " +
+        std::to_string(result->offset_from_initial_deg) +
+        " deg from the given pose, more than the tolerance band's " + formatLength(band) +
+        ": the deviations measure where it sits as well as its shape");
   }
 }
 
