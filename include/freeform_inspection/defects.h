@@ -40,6 +40,9 @@ struct DefectRegion {
   double peak = 0.0;                                   ///< [m] signed, largest magnitude
   double mean = 0.0;                                   ///< [m] mean signed deviation
   int sign = 0;  ///< +1 excess material (bump), -1 missing material (dent)
+  /// The named region (regions.h) it lies in, -1 for the rest of the part: points of different
+  /// regions are judged against different bands and never join one defect.
+  int region = -1;
   /// [m] the largest chord error (chord_error.h) of the CAD faces the region lies on: where it
   /// is a good share of the peak, the region may be the CAD's tessellation, not the part.
   double cad_chord_error = 0.0;
@@ -68,17 +71,18 @@ class DefectNeighbourhood {
   struct Impl;
   friend DefectResult findDefects(DefectNeighbourhood& neighbourhood,
                                   const std::vector<float>& deviation,
-                                  const ToleranceConfig& tolerance,
+                                  const ToleranceBands& tolerance,
                                   const DefectConfig& config);
   std::unique_ptr<Impl> impl_;
 };
 
-/// @brief Clusters the out-of-tolerance points of a deviation map.
+/// @brief Clusters the out-of-tolerance points of a deviation map, each point judged against
+/// its own band; points join only points of their region.
 /// @param deviation signed deviation per point of the neighbourhood [m], NaN for unmatched
 /// points (never defects).
 DefectResult findDefects(DefectNeighbourhood& neighbourhood,
                          const std::vector<float>& deviation,
-                         const ToleranceConfig& tolerance,
+                         const ToleranceBands& tolerance,
                          const DefectConfig& config);
 
 /// @brief findDefects() for one band: the neighbourhood built for this call alone.
@@ -87,7 +91,7 @@ DefectResult findDefects(DefectNeighbourhood& neighbourhood,
 DefectResult findDefects(const Points& points_cad,
                          const Triangles& faces,
                          const std::vector<float>& deviation,
-                         const ToleranceConfig& tolerance,
+                         const ToleranceBands& tolerance,
                          const DefectConfig& config);
 
 }  // namespace freeform_inspection

@@ -19,6 +19,7 @@
 #include "freeform_inspection/icp.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pose_uncertainty.h"
+#include "freeform_inspection/regions.h"
 #include "freeform_inspection/scan_cleaning.h"
 #include "freeform_inspection/support_plane.h"
 #include "freeform_inspection/types.h"
@@ -59,6 +60,9 @@ struct PipelineConfig {
   DeviationConfig deviation;
   DefectConfig defects;
   VerdictConfig verdict;
+  /// Named regions with their own band or left out (regions.h); not in config_fields' table:
+  /// they come from a regions file (CLI --regions, the node's ~regions_file).
+  std::vector<RegionConfig> regions;
 };
 
 /// @brief Checks every field of the configuration.
@@ -110,6 +114,23 @@ struct ConformanceZones {
   double inside_rejection_fraction = 0.0;
 };
 
+/// How one named region (PipelineConfig::regions) came out.
+struct RegionResult {
+  std::string name;
+  bool evaluated = true;      ///< false: left out of the verdict (RegionConfig::evaluate)
+  ToleranceConfig tolerance;  ///< the band it was judged against
+  /// Its scan points' statistics (those whose closest CAD point lies in it); coverage is the
+  /// share of its CAD surface with scan points near it.
+  DeviationStatistics deviation;
+  std::size_t defects = 0;  ///< defect regions in it
+  /// With a measurement uncertainty U (ConformanceZones): defect regions in it beyond its band
+  /// widened by U, and outside its band narrowed by U.
+  std::size_t defects_beyond_rejection = 0;
+  std::size_t defects_outside_acceptance = 0;
+  Verdict verdict = Verdict::kNotEvaluated;
+  std::string verdict_reason;
+};
+
 /// Wall time of one stage.
 struct StageTiming {
   std::string stage;     ///< stage name
@@ -154,6 +175,7 @@ struct InspectionResult {
   PoseUncertainty pose_uncertainty;
   DeviationStatistics deviation;      ///< empty unless the registration is ok or ambiguous
   std::vector<DefectRegion> defects;  ///< largest |peak| first
+  std::vector<RegionResult> regions;  ///< one per named region, in the configuration's order
   ConformanceZones conformance;  ///< the guard bands' decision (verdict.measurement_uncertainty)
   DeviationMap deviation_map;    ///< per scan point, CAD frame (empty when failed)
   Triangles scan_faces;          ///< the cleaned scan's triangles (indices into the map)

@@ -134,7 +134,7 @@ std::vector<std::string> validate(const DefectConfig& config) {
 DefectResult findDefects(const Points& points_cad,
                          const Triangles& faces,
                          const std::vector<float>& deviation,
-                         const ToleranceConfig& tolerance,
+                         const ToleranceBands& tolerance,
                          const DefectConfig& config) {
   DefectNeighbourhood neighbourhood(points_cad, faces);
   return findDefects(neighbourhood, deviation, tolerance, config);
@@ -142,17 +142,19 @@ DefectResult findDefects(const Points& points_cad,
 
 DefectResult findDefects(DefectNeighbourhood& neighbourhood,
                          const std::vector<float>& deviation,
-                         const ToleranceConfig& tolerance,
+                         const ToleranceBands& tolerance,
                          const DefectConfig& config) {
   DefectNeighbourhood::Impl& surface = *neighbourhood.impl_;
   const Points& points_cad = surface.points;
   const Triangles& faces = surface.faces;
   DefectResult result;
   result.point_region.assign(points_cad.size(), -1);
+  // Each out-of-band point's side and region in one number, (region + 2) × sign, so that the
+  // joins below, which compare it, keep one sign and one region per defect.
   std::vector<int> sign(points_cad.size(), 0);
   std::vector<std::size_t> outside;
   for (std::size_t i = 0; i < points_cad.size(); ++i) {
-    sign[i] = outsideSign(deviation[i], tolerance);
+    sign[i] = outsideSign(deviation[i], tolerance.at(i)) * (tolerance.regionAt(i) + 2);
     if (sign[i] != 0) {
       outside.push_back(i);
     }
@@ -234,7 +236,8 @@ DefectResult findDefects(DefectNeighbourhood& neighbourhood,
     if (region_of_root[root[i]] < 0) {
       region_of_root[root[i]] = static_cast<int>(regions.size());
       DefectRegion region;
-      region.sign = sign[i];
+      region.sign = sign[i] > 0 ? 1 : -1;
+      region.region = tolerance.regionAt(i);
       region.bbox_min = region.bbox_max = points_cad[i];
       regions.push_back(region);
     }

@@ -115,6 +115,7 @@ SurfaceDistances measureDeviation(const Model& model,
   result.deviation.assign(points_cad.size(), kUnmatched);
   result.normals.assign(points_cad.size(), Eigen::Vector3d::Zero());
   result.faces.assign(points_cad.size(), -1);
+  result.closest.assign(points_cad.size(), Eigen::Vector3d::Constant(kUnmatched));
   for (std::size_t i = 0; i < points_cad.size(); ++i) {
     if (!closest[i].found || pastBorder(model, points_cad[i], closest[i])) {
       continue;
@@ -122,6 +123,7 @@ SurfaceDistances measureDeviation(const Model& model,
     result.deviation[i] = static_cast<float>(closest[i].signed_distance);
     result.normals[i] = closest[i].normal;
     result.faces[i] = closest[i].face;
+    result.closest[i] = closest[i].point;
   }
   return result;
 }
@@ -177,10 +179,11 @@ std::vector<float> shapeDeviation(const DescriptorResult& scan,
   return shape;
 }
 
-double surfaceCoverage(const Model& model, const Points& points_cad, double distance) {
+std::vector<bool> coveredCells(const Model& model, const Points& points_cad, double distance) {
   const SurfaceGraph& cells = model.descriptors().graph;
+  std::vector<bool> covered(cells.size(), false);
   if (points_cad.empty() || cells.size() == 0) {
-    return 0.0;
+    return covered;
   }
   // One point per voxel of half the reach is as good as all of them for "is a point near", and
   // keeps a 1M-point scan's tree small.
@@ -198,32 +201,46 @@ double surfaceCoverage(const Model& model, const Points& points_cad, double dist
   if (2 * kept.size() > points_cad.size()) {
     distance = std::max(distance, 2.5 * medianSpacing(kept, scan));
   }
-  double covered = 0.0;
-  double total = 0.0;
   for (std::size_t c = 0; c < cells.size(); ++c) {
-    total += cells.area[c];
     const auto nearest = scan.nearest(cells.centroids[c], 1);
-    if (!nearest.empty() && nearest.front().squared_distance <= distance * distance) {
-      covered += cells.area[c];
-    }
+    covered[c] = !nearest.empty() && nearest.front().squared_distance <= distance * distance;
   }
-  return total > 0.0 ? covered / total : 0.0;
+  return covered;
 }
 
-double inToleranceFraction(const std::vector<float>& deviation, const ToleranceConfig& tolerance) {
+double coveredShare(const Model& model,
+                    const std::vector<bool>& covered,
+                    const std::vector<bool>& counted) {
+  const SurfaceGraph& cells = model.descriptors().graph;
+  double area = 0.0;
+  double total = 0.0;
+  for (std::size_t c = 0; c < cells.size() && c < covered.size(); ++c) {
+    if (counted.empty() || counted[c]) {
+      total += cells.area[c];
+      area += covered[c] ? cells.area[c] : 0.0;
+    }
+  }
+  return total > 0.0 ? area / total : 0.0;
+}
+
+double surfaceCoverage(const Model& model, const Points& points_cad, double distance) {
+  return coveredShare(model, coveredCells(model, points_cad, distance));
+}
+
+double inToleranceFraction(const std::vector<float>& deviation, const ToleranceBands& tolerance) {
   std::size_t finite = 0;
   std::size_t inside = 0;
-  for (const float v : deviation) {
-    if (std::isfinite(v)) {
+  for (std::size_t i = 0; i < deviation.size(); ++i) {
+    if (std::isfinite(deviation[i])) {
       ++finite;
-      inside += inTolerance(v, tolerance) ? 1 : 0;
+      inside += inTolerance(deviation[i], tolerance.at(i)) ? 1 : 0;
     }
   }
   return finite > 0 ? static_cast<double>(inside) / static_cast<double>(finite) : 0.0;
 }
 
 DeviationStatistics summarizeDeviation(const std::vector<float>& deviation,
-                                       const ToleranceConfig& tolerance,
+                                       const ToleranceBands& tolerance,
                                        int histogram_bins) {
   DeviationStatistics stats;
   const std::vector<double> sorted = sortedFinite(deviation);
@@ -250,7 +267,7 @@ DeviationStatistics summarizeDeviation(const std::vector<float>& deviation,
   stats.in_tolerance_fraction = inToleranceFraction(deviation, tolerance);
   // Symmetric bins wide enough for twice the band and the bulk of the data; the outer bins
   // take the tails so every point is counted.
-  const double band = std::max(tolerance.upper, -tolerance.lower);
+  const double band = std::max(tolerance.part.upper, -tolerance.part.lower);
   const double reach =
       std::max({2.0 * band, std::abs(quantile(sorted, 0.005)), std::abs(quantile(sorted, 0.995))});
   const auto bins = static_cast<std::size_t>(histogram_bins);

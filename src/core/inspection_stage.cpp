@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "pipeline_internal.h"
 
@@ -13,11 +15,12 @@
 #include "freeform_inspection/defects.h"
 #include "freeform_inspection/deviation.h"
 #include "freeform_inspection/model.h"
+#include "freeform_inspection/regions.h"
 
 namespace freeform_inspection::internal {
 namespace {
 
-std::string describeDefect(const DefectRegion& defect) {
+std::string describeDefect(const DefectRegion& defect, const std::vector<RegionConfig>& regions) {
   char text[160];
   std::snprintf(text,
                 sizeof(text),
@@ -28,36 +31,71 @@ std::string describeDefect(const DefectRegion& defect) {
                 defect.centroid.x(),
                 defect.centroid.y(),
                 defect.centroid.z());
+  if (defect.region >= 0) {
+    return text + (" in region '" + regions[static_cast<std::size_t>(defect.region)].name + "'");
+  }
   return text;
 }
 
+// Each point's band widened (by u > 0) or narrowed (u < 0). A band that narrowing empties holds
+// no deviation but 0 exactly: every point there lies outside it, so nothing there can be proven
+// to conform (ISO 14253-1), while it still judges the other points.
+ToleranceBands shiftedBands(const ToleranceBands& bands, double u) {
+  const auto shift = [u](const ToleranceConfig& band) {
+    const ToleranceConfig moved{band.upper + u, band.lower - u};
+    return moved.lower < moved.upper ? moved : ToleranceConfig{0.0, 0.0};
+  };
+  ToleranceBands shifted(shift(bands.part));
+  for (const ToleranceConfig& band : bands.region_bands) {
+    shifted.region_bands.push_back(shift(band));
+  }
+  shifted.region_of = bands.region_of;
+  return shifted;
+}
+
 // The regions and shares of the deviation map in the zones of ISO 14253-1's decision rule:
-// the band narrowed by U (acceptance) and widened by U (rejection beyond it). The same region
-// rules as the defects, so a zone's verdict and the defect list agree where U is 0.
-ConformanceZones conformanceZones(const DeviationMap& map,
+// the bands narrowed by U (acceptance) and widened by U (rejection beyond it). The same region
+// rules as the defects, so a zone's verdict and the defect list agree where U is 0. The zones'
+// limits reported are the part's band's.
+ConformanceZones conformanceZones(const std::vector<float>& deviation,
                                   DefectNeighbourhood& surface,
-                                  const PipelineConfig& config) {
+                                  const ToleranceBands& bands,
+                                  const PipelineConfig& config,
+                                  std::vector<RegionResult>* regions) {
   ConformanceZones zones;
   const double u = config.verdict.measurement_uncertainty;
   if (!(u > 0.0)) {
     return zones;
   }
   zones.measurement_uncertainty = u;
-  const ToleranceConfig rejection{config.tolerance.upper + u, config.tolerance.lower - u};
-  zones.rejection_lower = rejection.lower;
-  zones.rejection_upper = rejection.upper;
-  zones.regions_beyond_rejection =
-      findDefects(surface, map.deviation, rejection, config.defects).regions.size();
-  zones.inside_rejection_fraction = inToleranceFraction(map.deviation, rejection);
+  const ToleranceBands rejection = shiftedBands(bands, u);
+  zones.rejection_lower = rejection.part.lower;
+  zones.rejection_upper = rejection.part.upper;
+  const DefectResult beyond = findDefects(surface, deviation, rejection, config.defects);
+  zones.regions_beyond_rejection = beyond.regions.size();
+  zones.inside_rejection_fraction = inToleranceFraction(deviation, rejection);
   zones.acceptance_lower = config.tolerance.lower + u;
   zones.acceptance_upper = config.tolerance.upper - u;
-  // An empty acceptance zone proves nothing conforms; judge() says so.
-  if (zones.acceptance_lower < zones.acceptance_upper) {
-    const ToleranceConfig acceptance{zones.acceptance_upper, zones.acceptance_lower};
-    zones.regions_outside_acceptance =
-        findDefects(surface, map.deviation, acceptance, config.defects).regions.size();
-    zones.inside_acceptance_fraction = inToleranceFraction(map.deviation, acceptance);
+  // No band with an acceptance zone proves nothing conforms; judge() says so.
+  const auto opens = [u](const ToleranceConfig& band) { return band.lower + u < band.upper - u; };
+  DefectResult outside;
+  if (opens(bands.part) ||
+      std::any_of(bands.region_bands.begin(), bands.region_bands.end(), opens)) {
+    const ToleranceBands acceptance = shiftedBands(bands, -u);
+    outside = findDefects(surface, deviation, acceptance, config.defects);
+    zones.regions_outside_acceptance = outside.regions.size();
+    zones.inside_acceptance_fraction = inToleranceFraction(deviation, acceptance);
   }
+  // Each named region's share of them, for its own verdict.
+  const auto countIn = [regions](const DefectResult& found, std::size_t RegionResult::*count) {
+    for (const DefectRegion& defect : found.regions) {
+      if (defect.region >= 0) {
+        ++((*regions)[static_cast<std::size_t>(defect.region)].*count);
+      }
+    }
+  };
+  countIn(beyond, &RegionResult::defects_beyond_rejection);
+  countIn(outside, &RegionResult::defects_outside_acceptance);
   return zones;
 }
 
@@ -77,7 +115,8 @@ void judgeWithUncertainty(const PipelineConfig& config, InspectionResult* result
         std::to_string(zones.regions_beyond_rejection) +
         " region(s) outside the tolerance band widened by " + u + " " + rejection +
         " (nonconformance proven, ISO 14253-1); largest: " +
-        (result->defects.empty() ? std::string("-") : describeDefect(result->defects.front()));
+        (result->defects.empty() ? std::string("-")
+                                 : describeDefect(result->defects.front(), config.regions));
     return;
   }
   if (zones.inside_rejection_fraction < min_inside) {
@@ -203,17 +242,32 @@ void measurePart(const Model& model,
                                                      diagonal);
   map.shape_deviation =
       shapeDeviation(descriptors, model.descriptors(), result->T_cad_scan, distances.normals);
-  result->deviation =
-      summarizeDeviation(map.deviation, config.tolerance, config.deviation.histogram_bins);
+  // Each point is judged where it meets the CAD: against its region's band, or not at all on a
+  // region left out (its deviation stays in the map, measured).
+  if (!config.regions.empty()) {
+    map.region = regionOf(config.regions, distances.closest);
+  }
+  const ToleranceBands bands = toleranceBands(config.regions, map.region, config.tolerance);
+  std::size_t excluded = 0;
+  const std::vector<float> judged = judgedDeviation(config.regions, map, &excluded);
+  result->deviation = summarizeDeviation(judged, bands, config.deviation.histogram_bins);
+  result->deviation.excluded = excluded;
+  result->deviation.unmatched -= excluded;
   summarizeShapeDeviation(map.shape_deviation, &result->deviation);
-  result->deviation.coverage = surfaceCoverage(
-      model, map.points, config.deviation.coverage_distance_cells * model.cellSize());
+  const std::vector<bool> covered =
+      coveredCells(model, map.points, config.deviation.coverage_distance_cells * model.cellSize());
+  const std::vector<int> cell_region =
+      regionOf(config.regions, model.descriptors().graph.centroids);
+  result->deviation.coverage =
+      coveredShare(model, covered, evaluatedCells(config.regions, cell_region));
   // One neighbourhood for the band and, with a measurement uncertainty, its two guard bands.
   DefectNeighbourhood surface(map.points, scan.faces);
-  DefectResult defects = findDefects(surface, map.deviation, config.tolerance, config.defects);
+  DefectResult defects = findDefects(surface, judged, bands, config.defects);
   result->defects = std::move(defects.regions);
   map.defect = std::move(defects.point_region);
-  result->conformance = conformanceZones(map, surface, config);
+  result->regions =
+      summarizeRegions(model, config, map, bands, covered, cell_region, result->defects);
+  result->conformance = conformanceZones(judged, surface, bands, config, &result->regions);
   noteChordError(model, map, distances.faces, config, result);
   result->scan_faces = scan.faces;
   // A band narrower than the residual noise of the fit flags scattered points, not the part. At
@@ -230,11 +284,18 @@ void measurePart(const Model& model,
   }
 }
 
+namespace {
+
 // The part's verdict, kept apart from how sure the registration is.
-void judge(const PipelineConfig& config, InspectionResult* result) {
+void judgePart(const PipelineConfig& config, InspectionResult* result) {
   const DeviationStatistics& stats = result->deviation;
+  const bool own_bands =
+      std::any_of(config.regions.begin(), config.regions.end(), [](const RegionConfig& region) {
+        return region.has_tolerance;
+      });
   const std::string band = "[" + formatLength(config.tolerance.lower) + ", " +
-                           formatLength(config.tolerance.upper) + "]";
+                           formatLength(config.tolerance.upper) + "]" +
+                           (own_bands ? " (named regions: their own)" : "");
   result->verdict = Verdict::kNotEvaluated;
   if (result->status.code == StatusCode::kCancelled) {
     result->verdict_reason = "not evaluated: " + result->status.message;
@@ -265,9 +326,9 @@ void judge(const PipelineConfig& config, InspectionResult* result) {
   }
   if (!result->defects.empty()) {
     result->verdict = Verdict::kFail;
-    result->verdict_reason = std::to_string(result->defects.size()) +
-                             " region(s) outside the tolerance band " + band +
-                             "; largest: " + describeDefect(result->defects.front());
+    result->verdict_reason =
+        std::to_string(result->defects.size()) + " region(s) outside the tolerance band " + band +
+        "; largest: " + describeDefect(result->defects.front(), config.regions);
     return;
   }
   if (stats.in_tolerance_fraction < config.verdict.min_in_tolerance_fraction) {
@@ -284,6 +345,13 @@ void judge(const PipelineConfig& config, InspectionResult* result) {
                            std::to_string(stats.in_tolerance_fraction) + " of " +
                            std::to_string(stats.evaluated) + " points inside it, deviation " +
                            formatLength(stats.min) + " to " + formatLength(stats.max);
+}
+
+}  // namespace
+
+void judge(const PipelineConfig& config, InspectionResult* result) {
+  judgePart(config, result);
+  judgeRegions(config, result);
 }
 
 }  // namespace freeform_inspection::internal

@@ -1438,8 +1438,10 @@ std::vector<std::string> validate(const PipelineConfig& config) {
                            validate(config.icp)}) {
     errors.insert(errors.end(), list.begin(), list.end());
   }
-  for (const auto& list :
-       {validate(config.tolerance), validate(config.deviation), validate(config.defects)}) {
+  for (const auto& list : {validate(config.tolerance),
+                           validate(config.deviation),
+                           validate(config.defects),
+                           validate(config.regions)}) {
     errors.insert(errors.end(), list.begin(), list.end());
   }
   const VerdictConfig& verdict = config.verdict;

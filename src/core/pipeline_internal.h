@@ -5,7 +5,9 @@
 // Stages of inspect() that follow the registration, shared by pipeline.cpp and
 // inspection_stage.cpp. Not installed.
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "freeform_inspection/pipeline.h"
 
@@ -21,7 +23,34 @@ void measurePart(const Model& model,
                  const PipelineConfig& config,
                  InspectionResult* result);
 
-/// The part's verdict and its reason, kept apart from how sure the registration is.
+/// The part's verdict and its reason, kept apart from how sure the registration is; then each
+/// named region's (judgeRegions()).
 void judge(const PipelineConfig& config, InspectionResult* result);
+
+// Named regions (regions.h), region_verdict.cpp.
+
+/// The deviation the verdict reads: the map's, NaN on regions left out (RegionConfig::evaluate);
+/// `excluded` counts the measured points so hidden.
+std::vector<float> judgedDeviation(const std::vector<RegionConfig>& regions,
+                                   const DeviationMap& map,
+                                   std::size_t* excluded);
+
+/// The CAD cells (regionOf() their centroids: `cell_region`) whose coverage counts: all but
+/// those of regions left out; empty (all) when no region is left out.
+std::vector<bool> evaluatedCells(const std::vector<RegionConfig>& regions,
+                                 const std::vector<int>& cell_region);
+
+/// Each named region's statistics, coverage and defect count; verdicts come from judgeRegions().
+std::vector<RegionResult> summarizeRegions(const Model& model,
+                                           const PipelineConfig& config,
+                                           const DeviationMap& map,
+                                           const ToleranceBands& bands,
+                                           const std::vector<bool>& covered,
+                                           const std::vector<int>& cell_region,
+                                           const std::vector<DefectRegion>& defects);
+
+/// Each named region's verdict, after the part's (`result->verdict`): a region that fails fails
+/// the part; one that falls short of its min_coverage leaves a passed part not evaluated.
+void judgeRegions(const PipelineConfig& config, InspectionResult* result);
 
 }  // namespace freeform_inspection::internal

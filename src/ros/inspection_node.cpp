@@ -102,7 +102,8 @@ InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     model_error = "no model loaded: set ~model and ~model_units or call ~load_model";
     ROS_WARN_STREAM(model_error);
   } else {
-    model_error = installModel(config_.model, config_.model_units, config_.model_id, nullptr);
+    model_error = installModel(
+        config_.model, config_.model_units, config_.model_id, config_.pipeline.regions, nullptr);
     if (!model_error.empty()) {
       ROS_ERROR_STREAM(model_error << " (the node keeps running; use ~load_model)");
     }
@@ -242,6 +243,7 @@ bool InspectionNode::stopping() const {
 std::string InspectionNode::installModel(const std::string& uri,
                                          const std::string& units,
                                          const std::string& id,
+                                         std::vector<fi::RegionConfig> regions,
                                          LoadModel::Response* summary) {
   const auto scale = fi::unitScale(units);
   if (!scale) {
@@ -263,6 +265,7 @@ std::string InspectionNode::installModel(const std::string& uri,
   {
     std::lock_guard<std::mutex> lock(model_mutex_);
     model_ = model;
+    regions_ = std::move(regions);
     model_error_.clear();
   }
   const Eigen::Vector3d extent = model->bounds().extent();
@@ -291,8 +294,23 @@ bool InspectionNode::onLoadModel(LoadModel::Request& request, LoadModel::Respons
           ? "cannot resolve model URL '" + request.path + "'"
           : checkModelAccess(
                 path, dirs, static_cast<std::uintmax_t>(config_.max_model_mb) * 1024U * 1024U);
+  // The regions are the new model's: none unless the request names a file of them.
+  fi::RegionsLoadResult regions;
+  if (error.empty() && !request.regions_uri.empty()) {
+    const std::string regions_path = resolveModelPath(request.regions_uri);
+    error =
+        regions_path.empty()
+            ? "cannot resolve regions URL '" + request.regions_uri + "'"
+            : checkModelAccess(regions_path,
+                               dirs,
+                               static_cast<std::uintmax_t>(config_.max_model_mb) * 1024U * 1024U);
+    if (error.empty()) {
+      regions = fi::loadRegionsFile(regions_path);
+      error = regions.status.message;
+    }
+  }
   if (error.empty()) {
-    error = installModel(request.path, request.units, id, &response);
+    error = installModel(request.path, request.units, id, std::move(regions.regions), &response);
   }
   response.success = error.empty();
   response.message = error.empty() ? "loaded model '" + id + "'" : error;
@@ -422,6 +440,7 @@ std::optional<InspectionReport> InspectionNode::initialPose(
 InspectionReport InspectionNode::inspect(const Inspect::Request& request,
                                          ScanMessage scan,
                                          const std::shared_ptr<const fi::Model>& model,
+                                         const std::vector<fi::RegionConfig>& regions,
                                          const StageHook& stage) {
   if (auto refused = refusal(request, model)) {
     return *refused;
@@ -476,6 +495,7 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
     header.frame_id = config_.fixed_frame;
   }
   fi::PipelineConfig pipeline = requestPipeline(config_.pipeline, request);
+  pipeline.regions = regions;
   // ~input/crop_box is given in the fixed frame when there is one (a box around the fixture
   // holds wherever a robot carries the scanner), else in the scan's own.
   pipeline.input.crop_frame_from_scan = T_fixed_scan;
@@ -516,7 +536,9 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
   report.tolerance_lower = pipeline.tolerance.lower;
   report.part_id = request.part_id;  // names the report files
   archive(result, pipeline, *model, scan, scan_name, &report);
-  publish(result, pipeline.tolerance, report);
+  publish(result,
+          fi::toleranceBands(pipeline.regions, result.deviation_map.region, pipeline.tolerance),
+          report);
   return report;
 }
 
@@ -546,7 +568,7 @@ void InspectionNode::archive(const fi::InspectionResult& result,
 }
 
 void InspectionNode::publish(const fi::InspectionResult& result,
-                             const fi::ToleranceConfig& tolerance,
+                             const fi::ToleranceBands& tolerance,
                              const InspectionReport& report) {
   if (result.registration == fi::RegistrationStatus::kFailed) {
     return;  // no pose: nothing to place in the part frame
@@ -589,8 +611,14 @@ InspectionReport InspectionNode::inspectAndPublish(const Inspect::Request& reque
 InspectionReport InspectionNode::inspectAndPublishLocked(const Inspect::Request& request,
                                                          const StageHook& stage,
                                                          const ScanMessage& scan) {
-  const auto current = model();
-  InspectionReport report = inspect(request, scan, current, stage);
+  std::shared_ptr<const fi::Model> current;
+  std::vector<fi::RegionConfig> regions;
+  {
+    std::lock_guard<std::mutex> lock(model_mutex_);  // the model with its own regions
+    current = model_;
+    regions = regions_;
+  }
+  InspectionReport report = inspect(request, scan, current, regions, stage);
   report.part_id = request.part_id;
   report.model_id = current ? current->id() : "";
   if (report.error_code == kCancelledCode) {

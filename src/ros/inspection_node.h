@@ -82,10 +82,12 @@ class InspectionNode {
   void autoInspectLoop();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
-  /// Loads and installs a model; returns "" or the reason it failed.
+  /// Loads and installs a model with the named regions of its surface (regions.h); returns ""
+  /// or the reason it failed.
   std::string installModel(const std::string& uri,
                            const std::string& units,
                            const std::string& id,
+                           std::vector<freeform_inspection::RegionConfig> regions,
                            freeform_inspection::LoadModel::Response* summary);
   /// Runs one inspection, publishes its outputs and returns the report. A given `scan` is
   /// inspected instead of the one the request names (auto_inspect hands the received message on
@@ -102,6 +104,7 @@ class InspectionNode {
       const freeform_inspection::Inspect::Request& request,
       ScanMessage scan,
       const std::shared_ptr<const freeform_inspection::Model>& model,
+      const std::vector<freeform_inspection::RegionConfig>& regions,
       const StageHook& stage);
   /// The refusal of a request that cannot be inspected (no or another model), or nothing.
   std::optional<freeform_inspection::InspectionReport> refusal(
@@ -131,7 +134,7 @@ class InspectionNode {
                const std::string& scan_name,
                freeform_inspection::InspectionReport* report) const;
   void publish(const freeform_inspection::InspectionResult& result,
-               const freeform_inspection::ToleranceConfig& tolerance,
+               const freeform_inspection::ToleranceBands& tolerance,
                const freeform_inspection::InspectionReport& report);
   ScanMessage lastScan() const;
   bool stopping() const;
@@ -144,6 +147,7 @@ class InspectionNode {
 
   mutable std::mutex model_mutex_;
   std::shared_ptr<const freeform_inspection::Model> model_;
+  std::vector<freeform_inspection::RegionConfig> regions_;  // model_'s, replaced with it
   std::string model_error_;  // why no model is loaded, for the Inspect answer
 
   // One inspection at a time (service, action or auto); timed so a queued goal can be cancelled.

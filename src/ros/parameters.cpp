@@ -32,7 +32,8 @@ const std::vector<std::string> kNodeKeys = {"model",
                                             "tf_timeout",
                                             "max_model_mb",
                                             "report_dir",
-                                            "model_cache_dir"};
+                                            "model_cache_dir",
+                                            "regions_file"};
 
 struct ReadParam {
   const ros::NodeHandle& pnh;
@@ -122,6 +123,7 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   pnh.param("max_model_mb", config.max_model_mb, config.max_model_mb);
   pnh.param("report_dir", config.report_dir, config.report_dir);
   pnh.param("model_cache_dir", config.model_cache_dir, defaultModelCacheDir());
+  pnh.param("regions_file", config.regions_file, config.regions_file);
   std::set<std::string> known(kNodeKeys.begin(), kNodeKeys.end());
   for (const auto& field : fi::configFields(config.pipeline)) {
     std::visit(ReadParam{pnh, field.key, &result.errors}, field.target);
@@ -145,6 +147,14 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   }
   if (config.part_frame.empty()) {
     result.errors.push_back("~part_frame must not be empty");
+  }
+  if (!config.regions_file.empty()) {
+    fi::RegionsLoadResult regions = fi::loadRegionsFile(resolveModelPath(config.regions_file));
+    if (regions.status.ok()) {
+      config.pipeline.regions = std::move(regions.regions);
+    } else {
+      result.errors.push_back("~regions_file: " + regions.status.message);
+    }
   }
   for (const auto& error : fi::validate(config.pipeline)) {
     result.errors.push_back(error);

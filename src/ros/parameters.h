@@ -36,6 +36,9 @@ struct NodeConfig {
   /// restart or a changeover back to a known part skips computing them; empty: no cache.
   /// Default: $ROS_HOME/freeform_inspection/model_cache (ROS_HOME defaults to ~/.ros).
   std::string model_cache_dir;
+  /// Named regions of the CAD with their own tolerance or left out of the verdict (regions.h):
+  /// a YAML file path or package:// URL, read at start-up into pipeline.regions; empty: none.
+  std::string regions_file;
   freeform_inspection::PipelineConfig pipeline;  ///< ~input/*, ~tolerance/*
 };
 

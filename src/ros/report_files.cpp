@@ -63,7 +63,11 @@ ReportFilesResult writeReportFiles(const std::string& dir,
   written.files.push_back(html);
   if (result.deviation_map.size() > 0) {
     const std::string ply = base.string() + "_deviation.ply";
-    status = fi::saveDeviationPly(ply, result.deviation_map, result.scan_faces, config.tolerance);
+    status = fi::saveDeviationPly(
+        ply,
+        result.deviation_map,
+        result.scan_faces,
+        fi::toleranceBands(config.regions, result.deviation_map.region, config.tolerance));
     if (!status.ok()) {
       written.error = status.message;
       return written;

@@ -35,7 +35,7 @@ float packRgb(const fi::Rgb& colour) {
 }  // namespace
 
 sensor_msgs::PointCloud2 deviationCloud(const fi::InspectionResult& result,
-                                        const fi::ToleranceConfig& tolerance,
+                                        const fi::ToleranceBands& tolerance,
                                         const std_msgs::Header& header,
                                         std::size_t max_points) {
   const fi::DeviationMap& map = result.deviation_map;
@@ -76,8 +76,8 @@ sensor_msgs::PointCloud2 deviationCloud(const fi::InspectionResult& result,
     xyz[2] = static_cast<float>(map.points[i].z());
     const double d = map.deviation[i];
     *deviation = static_cast<float>(d);
-    *inside = fi::inTolerance(d, tolerance) ? 1 : 0;
-    *rgb = packRgb(fi::deviationColour(d, tolerance));
+    *inside = fi::inTolerance(d, tolerance.at(i)) ? 1 : 0;
+    *rgb = packRgb(fi::deviationColour(d, tolerance.at(i)));
   }
   return cloud;
 }
@@ -134,12 +134,13 @@ geometry_msgs::PoseWithCovarianceStamped poseWithCovariance(
   return pose;
 }
 
-void fillDeviation(const fi::InspectionResult& result,
-                   freeform_inspection::InspectionReport* report) {
-  const fi::DeviationStatistics& s = result.deviation;
-  auto& out = report->deviation;
+namespace {
+
+freeform_inspection::DeviationStats deviationStats(const fi::DeviationStatistics& s) {
+  freeform_inspection::DeviationStats out;
   out.n_points = static_cast<std::uint32_t>(s.evaluated);
   out.n_unmatched = static_cast<std::uint32_t>(s.unmatched);
+  out.n_excluded = static_cast<std::uint32_t>(s.excluded);
   out.mean = s.mean;
   out.std = s.std;
   out.rms = s.rms;
@@ -152,8 +153,44 @@ void fillDeviation(const fi::InspectionResult& result,
   out.coverage = s.coverage;
   out.histogram_edges = s.histogram_edges;
   out.histogram_counts.assign(s.histogram_counts.begin(), s.histogram_counts.end());
+  return out;
+}
+
+std::uint8_t verdictCode(fi::Verdict verdict) {
+  using Report = freeform_inspection::InspectionReport;
+  switch (verdict) {
+    case fi::Verdict::kPass:
+      return Report::PASS;
+    case fi::Verdict::kFail:
+      return Report::FAIL;
+    default:
+      return Report::NOT_EVALUATED;
+  }
+}
+
+}  // namespace
+
+void fillDeviation(const fi::InspectionResult& result,
+                   freeform_inspection::InspectionReport* report) {
+  const fi::DeviationStatistics& s = result.deviation;
+  report->deviation = deviationStats(s);
+  // Points on regions left out lie on the CAD too.
   const std::size_t scanned = result.counts.scan_points;
-  report->overlap = scanned > 0 ? static_cast<double>(s.evaluated) / scanned : 0.0;
+  report->overlap =
+      scanned > 0 ? static_cast<double>(s.evaluated + s.excluded) / static_cast<double>(scanned)
+                  : 0.0;
+  for (const fi::RegionResult& region : result.regions) {
+    freeform_inspection::RegionReport message;
+    message.name = region.name;
+    message.evaluated = region.evaluated;
+    message.status = verdictCode(region.verdict);
+    message.message = region.verdict_reason;
+    message.tolerance_upper = region.tolerance.upper;
+    message.tolerance_lower = region.tolerance.lower;
+    message.defects = static_cast<std::uint32_t>(region.defects);
+    message.deviation = deviationStats(region.deviation);
+    report->regions.push_back(message);
+  }
   std::uint32_t id = 0;
   for (const fi::DefectRegion& defect : result.defects) {
     freeform_inspection::Defect message;
@@ -167,6 +204,9 @@ void fillDeviation(const fi::InspectionResult& result,
     message.bbox_min = toPoint(defect.bbox_min);
     message.bbox_max = toPoint(defect.bbox_max);
     message.cad_chord_error = defect.cad_chord_error;
+    if (defect.region >= 0 && static_cast<std::size_t>(defect.region) < result.regions.size()) {
+      message.region = result.regions[static_cast<std::size_t>(defect.region)].name;
+    }
     report->defects.push_back(message);
   }
 }

@@ -22,9 +22,10 @@ namespace fi = freeform_inspection;
 /// @brief The deviation map as a PointCloud2 in the part (CAD) frame `header.frame_id`:
 /// FLOAT32 x, y, z, deviation [m] (NaN where no CAD is near), UINT8 in_tolerance, and rgb
 /// (packed FLOAT32, the banded colour scale of deviation_colours.h). At most `max_points`
-/// points, taken evenly (0 = all); unorganized (height 1).
+/// points, taken evenly (0 = all); unorganized (height 1). `tolerance`: each point's band
+/// (regions.h's toleranceBands()) or the part's.
 sensor_msgs::PointCloud2 deviationCloud(const fi::InspectionResult& result,
-                                        const fi::ToleranceConfig& tolerance,
+                                        const fi::ToleranceBands& tolerance,
                                         const std_msgs::Header& header,
                                         std::size_t max_points);
 

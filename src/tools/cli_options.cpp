@@ -54,6 +54,7 @@ std::string apply(const std::string& flag, const std::string& value, CliOptions*
   const std::map<std::string, std::string*> paths = {{"--cad", &options->cad_path},
                                                      {"--scan", &options->scan_path},
                                                      {"--config", &options->config_path},
+                                                     {"--regions", &options->regions_path},
                                                      {"--report", &options->report_path},
                                                      {"--deviation", &options->deviation_path},
                                                      {"--html", &options->html_path},
@@ -129,7 +130,8 @@ CliParseResult parseCliOptions(const std::vector<std::string>& args) {
 std::string cliUsage() {
   return "usage: freeform_inspect --cad CAD.{stl,ply,obj} --scan SCAN.{ply,pcd,stl,obj}\n"
          "                        [--cad-scale S] [--scan-scale S] [--tolerance T]\n"
-         "                        [--config FILE.yaml] [--report OUT.json] [--deviation OUT.ply]\n"
+         "                        [--config FILE.yaml] [--regions FILE.yaml]\n"
+         "                        [--report OUT.json] [--deviation OUT.ply]\n"
          "                        [--html OUT.html] [--model-cache DIR | --no-model-cache]\n"
          "                        [--initial-pose \"R11 R12 R13 TX R21 ... TZ\" |\n"
          "                         --fixed-pose \"R11 R12 R13 TX R21 ... TZ\"]\n"
@@ -142,6 +144,8 @@ std::string cliUsage() {
          "registered; --html writes a self-contained report for people (docs/reports.md).\n"
          "Lengths are metres after scaling: --cad-scale 0.001 reads a CAD file in millimetres,\n"
          "--tolerance 0.0002 is a band of +-0.2 mm.\n"
+         "--regions names regions of the CAD (boxes in its frame, metres) with a tolerance of\n"
+         "their own or left out of the verdict; each is reported and judged (docs/inspection.md).\n"
          "The CAD's descriptors and symmetries are kept between runs in --model-cache DIR\n"
          "(default $XDG_CACHE_HOME or ~/.cache, under freeform_inspection/models), so the next\n"
          "run on the same CAD skips computing them; --no-model-cache turns that off.\n"

@@ -16,6 +16,7 @@ struct CliOptions {
   double scan_scale = 1.0;          ///< --scan-scale [m per file unit]
   std::optional<double> tolerance;  ///< --tolerance [m], symmetric band ±T
   std::string config_path;          ///< --config FILE.yaml
+  std::string regions_path;         ///< --regions FILE.yaml (regions.h)
   std::string report_path;          ///< --report OUT.json
   std::string deviation_path;       ///< --deviation OUT.ply
   std::string html_path;            ///< --html OUT.html

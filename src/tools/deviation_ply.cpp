@@ -77,7 +77,8 @@ std::string inconsistency(const DeviationMap& map, const Triangles& faces) {
 void appendVertex(std::string* out,
                   const DeviationMap& map,
                   std::size_t i,
-                  const ToleranceConfig& tolerance) {
+                  const ToleranceBands& bands) {
+  const ToleranceConfig& tolerance = bands.at(i);
   for (int axis = 0; axis < 3; ++axis) {
     appendLittleEndian(out, static_cast<float>(map.points[i][axis]));
   }
@@ -98,7 +99,7 @@ void appendVertex(std::string* out,
 Status saveDeviationPly(const std::string& path,
                         const DeviationMap& map,
                         const Triangles& faces,
-                        const ToleranceConfig& tolerance) {
+                        const ToleranceBands& tolerance) {
   const std::string problem = inconsistency(map, faces);
   if (!problem.empty()) {
     return invalid(path, problem);

@@ -17,11 +17,12 @@ namespace freeform_inspection {
 /// @param map one entry per point; `shape_deviation` and `defect` may be empty (written as NaN
 /// and -1).
 /// @param faces triangles indexing `map.points`, or empty for a cloud.
+/// @param tolerance each point's band (regions.h's toleranceBands()), or the part's.
 /// @return kInvalidInput naming the file for inconsistent sizes, a face index out of range or
 /// an I/O failure (with the OS reason).
 Status saveDeviationPly(const std::string& path,
                         const DeviationMap& map,
                         const Triangles& faces,
-                        const ToleranceConfig& tolerance);
+                        const ToleranceBands& tolerance);
 
 }  // namespace freeform_inspection

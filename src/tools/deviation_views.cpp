@@ -46,15 +46,15 @@ std::string directionText(const Eigen::Vector3d& toward_viewer) {
 }  // namespace
 
 std::string deviationViewsHtml(const DeviationMap& map,
-                               const ToleranceConfig& tolerance,
+                               const ToleranceBands& tolerance,
                                const SplatConfig& config) {
   if (map.size() == 0 || map.deviation.size() != map.size()) {
     return "<p class=\"none\">No deviation map: the scan was not evaluated.</p>\n";
   }
   std::vector<Rgb> colours;
   colours.reserve(map.size());
-  for (const float deviation : map.deviation) {
-    colours.push_back(deviationColour(deviation, tolerance));
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    colours.push_back(deviationColour(map.deviation[i], tolerance.at(i)));
   }
   std::string html = "<div class=\"views\">\n";
   for (const OrthoView& view : principalViews(map.points)) {
@@ -67,22 +67,28 @@ std::string deviationViewsHtml(const DeviationMap& map,
   return html + "</div>\n";
 }
 
-std::string colourLegendHtml(const DeviationMap& map, const ToleranceConfig& tolerance) {
+std::string colourLegendHtml(const DeviationMap& map, const ToleranceBands& tolerance) {
   std::map<int, std::size_t> counts;
-  for (const float deviation : map.deviation) {
-    ++counts[deviationBand(deviation, tolerance)];
+  for (std::size_t i = 0; i < map.deviation.size(); ++i) {
+    ++counts[deviationBand(map.deviation[i], tolerance.at(i))];
   }
   const double total = static_cast<double>(std::max<std::size_t>(map.deviation.size(), 1));
   std::string html =
       "<table class=\"legend\">\n<tr><th></th><th>band</th><th>signed deviation</th>"
       "<th>points</th></tr>\n";
-  for (const ColourBand& band : deviationLegend(tolerance)) {
+  for (const ColourBand& band : deviationLegend(tolerance.part)) {
     const std::size_t count = counts[band.band];
     html += "<tr><td>" + swatch(band.colour) + "</td><td>" + escapeHtml(band.label) + "</td><td>" +
             rangeText(band) + "</td><td>" + std::to_string(count) + " (" +
             percent(static_cast<double>(count) / total) + ")</td></tr>\n";
   }
-  return html + "</table>\n";
+  html += "</table>\n";
+  if (!tolerance.region_bands.empty()) {
+    html +=
+        "<p>Named regions are coloured against their own band: the ranges above are the "
+        "part's.</p>\n";
+  }
+  return html;
 }
 
 }  // namespace freeform_inspection

@@ -14,11 +14,12 @@ namespace freeform_inspection {
 /// principalViews(), each captioned with its viewing direction in the CAD frame.
 /// @return the figures; a short `<p>` when the map is empty.
 std::string deviationViewsHtml(const DeviationMap& map,
-                               const ToleranceConfig& tolerance,
+                               const ToleranceBands& tolerance,
                                const SplatConfig& config = SplatConfig());
 
 /// @brief The colour legend as an HTML table: swatch, band, range in mm and the share of the
-/// map's points in each band.
-std::string colourLegendHtml(const DeviationMap& map, const ToleranceConfig& tolerance);
+/// map's points in each band. `tolerance`: each point's band (regions.h), the ranges shown the
+/// part's.
+std::string colourLegendHtml(const DeviationMap& map, const ToleranceBands& tolerance);
 
 }  // namespace freeform_inspection

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_options.h"
@@ -21,6 +22,7 @@
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
 #include "freeform_inspection/process_memory.h"
+#include "freeform_inspection/regions.h"
 
 namespace fi = freeform_inspection;
 
@@ -44,11 +46,16 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Reads the YAML configuration (or the defaults) and applies --tolerance.
+// Reads the YAML configuration (or the defaults) and the regions, and applies --tolerance.
 fi::ConfigLoadResult configure(const fi::CliOptions& options) {
   fi::ConfigLoadResult loaded;
   if (!options.config_path.empty()) {
     loaded = fi::loadPipelineConfigFile(options.config_path);
+  }
+  if (loaded.status.ok() && !options.regions_path.empty()) {
+    fi::RegionsLoadResult regions = fi::loadRegionsFile(options.regions_path);
+    loaded.status = regions.status;
+    loaded.config.regions = std::move(regions.regions);
   }
   if (options.tolerance) {
     loaded.config.tolerance.upper = *options.tolerance;
@@ -99,7 +106,10 @@ fi::Status writeOutputs(const fi::CliOptions& options,
                         std::time_t started) {
   if (!options.deviation_path.empty() && result.deviation_map.size() > 0) {
     fi::Status written = fi::saveDeviationPly(
-        options.deviation_path, result.deviation_map, result.scan_faces, config.tolerance);
+        options.deviation_path,
+        result.deviation_map,
+        result.scan_faces,
+        fi::toleranceBands(config.regions, result.deviation_map.region, config.tolerance));
     if (!written.ok()) {
       return written;
     }

@@ -159,7 +159,34 @@ std::string conformanceSection(const ConformanceZones& z) {
          "</table>\n";
 }
 
-std::string defectRow(std::size_t id, const DefectRegion& d) {
+// Pass/fail per named region (regions.h), with the band each was judged against.
+std::string regionsSection(const std::vector<RegionResult>& regions) {
+  if (regions.empty()) {
+    return "";
+  }
+  std::string html =
+      "<h2>Regions</h2>\n<table class=\"defects\">\n<tr><th>region</th><th>verdict</th>"
+      "<th>band</th><th>points</th><th>coverage</th><th>in band</th><th>min</th><th>max</th>"
+      "<th>defects</th><th>why</th></tr>\n";
+  for (const RegionResult& r : regions) {
+    const DeviationStatistics& d = r.deviation;
+    const bool measured = d.evaluated > 0;
+    html += tableRow(escapeHtml(r.name),
+                     {toString(r.verdict),
+                      millimetres(r.tolerance.lower) + " to " + millimetres(r.tolerance.upper),
+                      std::to_string(d.evaluated),
+                      percent(d.coverage),
+                      measured ? percent(d.in_tolerance_fraction) : "&ndash;",
+                      measured ? millimetres(d.min) : "&ndash;",
+                      measured ? millimetres(d.max) : "&ndash;",
+                      std::to_string(r.defects),
+                      escapeHtml(r.verdict_reason)});
+  }
+  return html + "</table>\n";
+}
+
+// `region`: the named region's name as HTML, or a dash.
+std::string defectRow(std::size_t id, const DefectRegion& d, const std::string& region) {
   const std::string centroid = number(d.centroid.x() * 1e3, 2) + ", " +
                                number(d.centroid.y() * 1e3, 2) + ", " +
                                number(d.centroid.z() * 1e3, 2);
@@ -170,10 +197,12 @@ std::string defectRow(std::size_t id, const DefectRegion& d) {
                    number(d.area * 1e6, 3),
                    millimetres(d.peak),
                    millimetres(d.mean),
-                   millimetres(d.cad_chord_error)});
+                   millimetres(d.cad_chord_error),
+                   region});
 }
 
-std::string defectsSection(const std::vector<DefectRegion>& defects) {
+std::string defectsSection(const InspectionResult& result) {
+  const std::vector<DefectRegion>& defects = result.defects;
   std::string html = "<h2>Defects</h2>\n";
   if (defects.empty()) {
     return html + "<p class=\"none\">No defect regions.</p>\n";
@@ -182,9 +211,14 @@ std::string defectsSection(const std::vector<DefectRegion>& defects) {
       "<table class=\"defects\">\n<tr><th>id</th><th>material</th><th>centroid x, y, z [mm]</th>"
       "<th>points</th><th>area [mm&sup2;]</th><th>peak</th><th>mean</th>"
       "<th title=\"how far the CAD's faces there may lie from the curved surface they stand "
-      "for\">CAD chord error</th></tr>\n";
+      "for\">CAD chord error</th><th>region</th></tr>\n";
   for (std::size_t i = 0; i < defects.size(); ++i) {
-    html += defectRow(i, defects[i]);
+    const int region = defects[i].region;
+    html +=
+        defectRow(i,
+                  defects[i],
+                  region >= 0 ? escapeHtml(result.regions[static_cast<std::size_t>(region)].name)
+                              : std::string("&ndash;"));
   }
   return html + "</table>\n";
 }
@@ -209,7 +243,7 @@ std::string configSection(const PipelineConfig& config, const std::string& confi
   return html + "</table>\n</details>\n";
 }
 
-std::string mapSection(const InspectionResult& result, const ToleranceConfig& tolerance) {
+std::string mapSection(const InspectionResult& result, const ToleranceBands& tolerance) {
   return "<h2>Deviation map</h2>\n" + deviationViewsHtml(result.deviation_map, tolerance) +
          colourLegendHtml(result.deviation_map, tolerance);
 }
@@ -225,11 +259,12 @@ std::string renderHtmlReport(const InspectionResult& result,
          escapeHtml("Inspection " + part + ": " + toString(result.verdict)) + "</title>\n" +
          kStyle + "</head>\n<body>\n<h1>Inspection report: " + escapeHtml(part) + "</h1>\n" +
          verdictBanner(result) + provenanceSection(provenance, config_hash) +
-         statisticsSection(result.deviation, config.tolerance) +
-         conformanceSection(result.conformance) + mapSection(result, config.tolerance) +
-         defectsSection(result.defects) + registrationSection(result) +
-         warningsSection(result.warnings) + configSection(config, config_hash) +
-         "</body>\n</html>\n";
+         statisticsSection(result.deviation, config.tolerance) + regionsSection(result.regions) +
+         conformanceSection(result.conformance) +
+         mapSection(result,
+                    toleranceBands(config.regions, result.deviation_map.region, config.tolerance)) +
+         defectsSection(result) + registrationSection(result) + warningsSection(result.warnings) +
+         configSection(config, config_hash) + "</body>\n</html>\n";
 }
 
 Status saveHtmlReport(const std::string& path,

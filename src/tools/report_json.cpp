@@ -49,6 +49,7 @@ nlohmann::ordered_json deviationJson(const DeviationStatistics& d) {
     }
     none["evaluated"] = 0;
     none["unmatched"] = d.unmatched;
+    none["excluded"] = d.excluded;
     none["histogram"] = histogramJson(d);
     return none;
   }
@@ -64,14 +65,23 @@ nlohmann::ordered_json deviationJson(const DeviationStatistics& d) {
           {"coverage", d.coverage},
           {"evaluated", d.evaluated},
           {"unmatched", d.unmatched},
+          {"excluded", d.excluded},
           {"shape_mean", numberOrNull(d.shape_mean)},
           {"shape_p95", numberOrNull(d.shape_p95)},
           {"histogram", histogramJson(d)}};
 }
 
-nlohmann::ordered_json defectsJson(const std::vector<DefectRegion>& defects) {
+// The named region a defect lies in, null for the rest of the part.
+nlohmann::ordered_json regionName(const InspectionResult& result, int region) {
+  if (region < 0 || static_cast<std::size_t>(region) >= result.regions.size()) {
+    return nullptr;
+  }
+  return result.regions[static_cast<std::size_t>(region)].name;
+}
+
+nlohmann::ordered_json defectsJson(const InspectionResult& result) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
-  for (const auto& d : defects) {
+  for (const auto& d : result.defects) {
     list.push_back({{"centroid", vectorJson(d.centroid)},
                     {"points", d.points},
                     {"area", d.area},
@@ -80,7 +90,22 @@ nlohmann::ordered_json defectsJson(const std::vector<DefectRegion>& defects) {
                     {"mean", d.mean},
                     {"bbox_min", vectorJson(d.bbox_min)},
                     {"bbox_max", vectorJson(d.bbox_max)},
-                    {"cad_chord_error", d.cad_chord_error}});
+                    {"cad_chord_error", d.cad_chord_error},
+                    {"region", regionName(result, d.region)}});
+  }
+  return list;
+}
+
+nlohmann::ordered_json regionsJson(const std::vector<RegionResult>& regions) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const RegionResult& r : regions) {
+    list.push_back({{"name", r.name},
+                    {"evaluated", r.evaluated},
+                    {"tolerance", {{"upper", r.tolerance.upper}, {"lower", r.tolerance.lower}}},
+                    {"verdict", toString(r.verdict)},
+                    {"verdict_reason", r.verdict_reason},
+                    {"defects", r.defects},
+                    {"deviation", deviationJson(r.deviation)}});
   }
   return list;
 }
@@ -159,7 +184,8 @@ nlohmann::ordered_json toJson(const InspectionResult& result) {
   json["verdict"] = toString(result.verdict);
   json["verdict_reason"] = result.verdict_reason;
   json["deviation"] = deviationJson(result.deviation);
-  json["defects"] = defectsJson(result.defects);
+  json["defects"] = defectsJson(result);
+  json["regions"] = regionsJson(result.regions);
   json["conformance"] = conformanceJson(result.conformance);
   json["counts"] = countsJson(result.counts);
   json["timings_s"] = nlohmann::ordered_json::object();

@@ -63,6 +63,23 @@ std::vector<std::pair<std::string, std::string>> configEntries(const PipelineCon
   for (const ConfigField& field : configFields(copy)) {
     entries.emplace_back(field.key, valueText(field));
   }
+  // The regions judge the part as much as the fields do: they are in the hash too.
+  const auto point = [](const Eigen::Vector3d& p) {
+    return "[" + numberText(p.x()) + ", " + numberText(p.y()) + ", " + numberText(p.z()) + "]";
+  };
+  for (const RegionConfig& region : config.regions) {
+    std::string text;
+    for (const RegionBox& box : region.boxes) {
+      text += "box " + point(box.min) + " to " + point(box.max) + "; ";
+    }
+    if (region.has_tolerance) {
+      text += "tolerance " + numberText(region.tolerance.lower) + " to " +
+              numberText(region.tolerance.upper) + "; ";
+    }
+    text += std::string("evaluate ") + (region.evaluate ? "true" : "false") + "; min_coverage " +
+            numberText(region.min_coverage);
+    entries.emplace_back("regions/" + region.name, text);
+  }
   return entries;
 }
 

@@ -374,6 +374,55 @@ TEST(InspectionNode, LoadModelRefusesBadPathsAndUnitsAndKeepsTheModel) {
   EXPECT_LT(good.response.diagonal, 0.5);
 }
 
+// ~load_model with the part's named regions (data/blade/blade_regions.yaml): each region is
+// reported with its own band and verdict; loading the model again without them drops them; a
+// bad regions file is refused and the model kept.
+TEST(InspectionNode, LoadModelWithRegionsJudgesEachRegion) {
+  ASSERT_TRUE(ros::service::waitForService(nodeName() + "/load_model", kWait));
+  LoadModel with_regions;
+  with_regions.request.path = "package://freeform_inspection/data/blade/blade_fine.stl";
+  with_regions.request.units = "mm";
+  with_regions.request.regions_uri = "package://freeform_inspection/data/blade/blade_regions.yaml";
+  ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", with_regions));
+  ASSERT_TRUE(with_regions.response.success) << with_regions.response.message;
+  // The part's band far below the sample's noise (σ 0.02 mm): the airfoil fails, the root holds
+  // in its own ±0.5 mm band, the tip is left out.
+  Inspect::Request request = cloudRequest(sampleCloud());
+  request.tolerance_upper = 0.00001;
+  request.tolerance_lower = -0.00001;
+  const Inspect::Response judged = callInspect(request);
+  EXPECT_EQ(judged.status, Inspect::Response::FAIL) << judged.message;
+  const InspectionReport& report = judged.report;
+  ASSERT_EQ(report.regions.size(), 2u);
+  EXPECT_EQ(report.regions[0].name, "tip");
+  EXPECT_FALSE(report.regions[0].evaluated);
+  EXPECT_EQ(report.regions[0].status, InspectionReport::NOT_EVALUATED);
+  EXPECT_GT(report.regions[0].deviation.n_points, 0u);
+  EXPECT_EQ(report.deviation.n_excluded, report.regions[0].deviation.n_points);
+  EXPECT_EQ(report.regions[1].name, "root");
+  EXPECT_EQ(report.regions[1].status, InspectionReport::PASS) << report.regions[1].message;
+  EXPECT_EQ(report.regions[1].tolerance_upper, 0.0005);
+  EXPECT_EQ(report.regions[1].defects, 0u);
+  ASSERT_FALSE(report.defects.empty());
+  for (const auto& defect : report.defects) {
+    EXPECT_EQ(defect.region, "") << "the airfoil is the rest of the part";
+  }
+
+  LoadModel bad = with_regions;
+  bad.request.regions_uri = "package://freeform_inspection/data/blade/no_such_regions.yaml";
+  ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", bad));
+  EXPECT_FALSE(bad.response.success);
+  EXPECT_NE(bad.response.message.find("no_such_regions.yaml"), std::string::npos)
+      << bad.response.message;
+  EXPECT_EQ(callInspect(request).report.regions.size(), 2u) << "the model and its regions kept";
+
+  LoadModel without = with_regions;
+  without.request.regions_uri = "";
+  ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", without));
+  ASSERT_TRUE(without.response.success) << without.response.message;
+  EXPECT_TRUE(callInspect(request).report.regions.empty());
+}
+
 // Provider node of `service` according to the master, "" if none.
 std::string serviceProvider(const std::string& service) {
   XmlRpc::XmlRpcValue args;

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "freeform_inspection/io.h"
 
@@ -38,8 +39,29 @@ struct CliRun {
   std::string err;
 };
 
+// This process's own scratch directory under the test temp dir, removed when the tests end:
+// two runs side by side (a hand run beside CI) never share or delete each other's files.
+const std::filesystem::path& scratch() {
+  static const std::filesystem::path dir = [] {
+    const std::filesystem::path made =
+        std::filesystem::path(::testing::TempDir()) / ("cli_test_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(made);
+    return made;
+  }();
+  return dir;
+}
+
+class ScratchCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ignored;
+    std::filesystem::remove_all(scratch(), ignored);
+  }
+};
+const auto* const kScratchCleanup = ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
+
 std::string temp(const std::string& name) {
-  return (std::filesystem::path(::testing::TempDir()) / ("cli_test_" + name)).string();
+  return (scratch() / name).string();
 }
 
 std::string slurp(const std::string& path) {
@@ -436,6 +458,67 @@ TEST(Cli, InvalidConfigExitsTwoNamingTheKey) {
   const CliRun run = runCli("--cad " + kBlade + " --scan " + kScan + " --config " + config);
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.err.find("tolerance/uper"), std::string::npos) << run.err;
+}
+
+// Named regions from --regions: each one reported with its band, statistics and verdict, the
+// defects named by region; a region left out hides what lies in it; a bad file exits 2.
+TEST(Cli, RegionsFileJudgesEachRegionWithItsOwnBand) {
+  // The blade's root (the CAD's z below 20 mm) held to ±0.01 mm, its tip (z above 120 mm) left
+  // out, the rest at ±0.2 mm; the sample's noise σ is 0.02 mm.
+  const std::string regions = temp("regions.yaml");
+  std::ofstream(regions) << "regions:\n"
+                            "  - name: tip\n"
+                            "    boxes: [{min: [-1, -1, 0.12], max: [1, 1, 1]}]\n"
+                            "    evaluate: false\n"
+                            "  - name: root\n"
+                            "    boxes: [{min: [-1, -1, -1], max: [1, 1, 0.02]}]\n"
+                            "    tolerance: {upper: 0.00001, lower: -0.00001}\n";
+  const std::string args = "--cad " + kBladeFine + " --cad-scale 0.001 --scan " + kScan +
+                           " --tolerance 0.0002 --initial-pose " + poseArgument(sampleTruth());
+  const CliRun plain = runCli(args);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const nlohmann::json part = nlohmann::json::parse(plain.out);
+  EXPECT_EQ(part["verdict"], "PASS") << part["verdict_reason"];
+  EXPECT_TRUE(part["regions"].empty());
+  const CliRun run = runCli(args + " --regions " + regions);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["verdict"], "FAIL") << json["verdict_reason"];
+  ASSERT_EQ(json["regions"].size(), 2u);
+  const nlohmann::json& tip = json["regions"][0];
+  const nlohmann::json& root = json["regions"][1];
+  EXPECT_EQ(tip["name"], "tip");
+  EXPECT_EQ(tip["evaluated"], false);
+  EXPECT_EQ(tip["verdict"], "NOT_EVALUATED");
+  EXPECT_EQ(tip["tolerance"]["upper"], 0.0002);
+  EXPECT_EQ(root["verdict"], "FAIL") << root["verdict_reason"];
+  EXPECT_EQ(root["tolerance"]["lower"], -0.00001);
+  EXPECT_LT(root["deviation"]["in_tolerance_fraction"].get<double>(), 0.6);
+  // Every defect lies in the root, and the root counts them all.
+  ASSERT_FALSE(json["defects"].empty());
+  for (const auto& defect : json["defects"]) {
+    EXPECT_EQ(defect["region"], "root");
+  }
+  EXPECT_EQ(root["defects"].get<std::size_t>(), json["defects"].size());
+  // The part's points: the tip's are left out, and the rest are all accounted for.
+  const std::size_t excluded = json["deviation"]["excluded"].get<std::size_t>();
+  EXPECT_EQ(excluded, tip["deviation"]["evaluated"].get<std::size_t>());
+  EXPECT_GT(excluded, 0u);
+  EXPECT_EQ(json["deviation"]["evaluated"].get<std::size_t>() + excluded,
+            part["deviation"]["evaluated"].get<std::size_t>());
+
+  // A bad regions file: exit 2, one line naming the file and the problem, nothing inspected.
+  std::ofstream(regions)
+      << "regions:\n  - {name: root, boxes: [{min: [0, 0, 1], max: [1, 1, 0]}]}\n";
+  const CliRun bad = runCli(args + " --regions " + regions);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_TRUE(bad.out.empty());
+  EXPECT_EQ(lineCount(bad.err), 1) << bad.err;
+  EXPECT_NE(bad.err.find(regions), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("region 'root'"), std::string::npos) << bad.err;
+  const CliRun missing = runCli(args + " --regions " + temp("no_such_regions.yaml"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("no_such_regions.yaml"), std::string::npos) << missing.err;
 }
 
 // The sample scan is of the fine blade; blade.stl samples its superellipse platform half as

@@ -12,6 +12,7 @@
 #include "analytic_shapes.h"
 #include <gtest/gtest.h>
 
+#include "freeform_inspection/regions.h"
 #include "freeform_inspection/surface_defect.h"
 
 namespace freeform_inspection {
@@ -229,6 +230,47 @@ TEST(Defects, SmallRegionsAndUnmatchedPointsAreNotDefects) {
   config.min_points = 5;
   EXPECT_TRUE(
       findDefects(scan.points, scan.faces, scan.deviation, band(1e-4), config).regions.empty());
+}
+
+// A bump across the border of a named region (regions.h): its points are judged against their
+// own region's band, and points of two regions never join one defect.
+TEST(Defects, ABumpAcrossARegionsBorderIsJudgedOnEachSideByThatSidesBand) {
+  const SurfaceDefect bump{Eigen::Vector3d(0.0, 0.0, 0.0), 0.008, 6e-4};
+  for (const bool mesh : {true, false}) {
+    SCOPED_TRACE(mesh ? "mesh" : "cloud");
+    const PlaneScan scan = scanPlane({bump}, 0.0, 1);
+    const Triangles faces = mesh ? scan.faces : Triangles();
+    RegionConfig left;
+    left.name = "left";
+    left.boxes.push_back({Eigen::Vector3d(-1.0, -1.0, -1.0), Eigen::Vector3d(0.0, 1.0, 1.0)});
+    std::vector<RegionConfig> regions = {left};
+    const std::vector<int> region_of = regionOf(regions, scan.points);
+    const DefectResult whole = findDefects(scan.points, faces, scan.deviation, band(1e-4), {});
+    ASSERT_EQ(whole.regions.size(), 1u);
+    // The same band on both sides: the bump falls in two halves, one per side.
+    const DefectResult split = findDefects(
+        scan.points, faces, scan.deviation, toleranceBands(regions, region_of, band(1e-4)), {});
+    ASSERT_EQ(split.regions.size(), 2u);
+    EXPECT_NE(split.regions[0].region, split.regions[1].region);
+    EXPECT_EQ(split.regions[0].points + split.regions[1].points, whole.regions[0].points);
+    for (const DefectRegion& half : split.regions) {
+      EXPECT_EQ(half.region<0, half.centroid.x()> 0.0);  // the rest of the part is x > 0
+      EXPECT_NEAR(half.peak, 6e-4, 2e-5);  // the bump's top is on the border: both reach it
+    }
+    // A band on the left that the bump stays inside: only the right half is a defect.
+    regions[0].has_tolerance = true;
+    regions[0].tolerance = band(1e-3);
+    const DefectResult right = findDefects(
+        scan.points, faces, scan.deviation, toleranceBands(regions, region_of, band(1e-4)), {});
+    ASSERT_EQ(right.regions.size(), 1u);
+    EXPECT_EQ(right.regions[0].region, -1);
+    EXPECT_GT(right.regions[0].centroid.x(), 0.0);
+    for (std::size_t i = 0; i < scan.points.size(); ++i) {
+      if (scan.points[i].x() < 0.0) {
+        EXPECT_EQ(right.point_region[i], -1);
+      }
+    }
+  }
 }
 
 TEST(Defects, ConfigurationIsChecked) {

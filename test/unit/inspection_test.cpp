@@ -237,6 +237,110 @@ TEST(Inspection, VerdictNeedsATrustedPoseAndEnoughCoverage) {
   EXPECT_FALSE(failed.verdict_reason.empty());
 }
 
+// Named regions (regions.h) on a dented blade, judged at its true pose so that only the
+// verdict is under test: a region left out hides the dent, a region with a wider band of its
+// own passes it, a region with the part's band fails with the dent named in it, and a region the
+// scan does not cover as asked leaves the part not evaluated.
+TEST(Inspection, NamedRegionsAreJudgedWithTheirOwnBands) {
+  const double sigma = 0.001 * diagonal();
+  SyntheticScan dented = makeCase(3, 0.001, false);
+  const SurfaceDefect dent = pressDent(&dented, 0.03, -20.0 * sigma);
+  const auto inspectWith = [&](const std::vector<RegionConfig>& regions) {
+    PipelineConfig config = withBand(4.0 * sigma);
+    config.regions = regions;
+    return inspectAt(blade(), dented.scan, dented.T_cad_scan, config);
+  };
+  RegionConfig around;
+  around.name = "dent";
+  const Eigen::Vector3d reach = Eigen::Vector3d::Constant(1.5 * dent.radius);
+  around.boxes.push_back({dent.centre - reach, dent.centre + reach});
+
+  const InspectionResult plain = inspectWith({});
+  ASSERT_EQ(plain.verdict, Verdict::kFail) << plain.verdict_reason;
+  ASSERT_EQ(plain.defects.size(), 1u);
+  EXPECT_EQ(plain.defects[0].region, -1);
+  EXPECT_TRUE(plain.regions.empty());
+  EXPECT_TRUE(plain.deviation_map.region.empty());
+  EXPECT_EQ(plain.deviation.excluded, 0u);
+
+  // The part's band in the region: the same defect, now named in it.
+  const InspectionResult named = inspectWith({around});
+  EXPECT_EQ(named.verdict, Verdict::kFail);
+  EXPECT_NE(named.verdict_reason.find("in region 'dent'"), std::string::npos)
+      << named.verdict_reason;
+  ASSERT_EQ(named.defects.size(), 1u);
+  EXPECT_EQ(named.defects[0].region, 0);
+  EXPECT_EQ(named.defects[0].points, plain.defects[0].points);
+  ASSERT_EQ(named.regions.size(), 1u);
+  const RegionResult& region = named.regions[0];
+  EXPECT_EQ(region.verdict, Verdict::kFail);
+  EXPECT_EQ(region.defects, 1u);
+  EXPECT_EQ(region.deviation.min, plain.deviation.min);  // the dent's deepest point is in it
+  EXPECT_LT(region.deviation.min, -12.0 * sigma);
+  EXPECT_GT(region.deviation.coverage, 0.9);
+  EXPECT_EQ(named.deviation.evaluated, plain.deviation.evaluated);
+  std::size_t inside = 0;
+  for (const int r : named.deviation_map.region) {
+    inside += r == 0 ? 1 : 0;
+  }
+  EXPECT_EQ(region.deviation.evaluated, inside);
+  EXPECT_GT(inside, plain.defects[0].points);
+
+  // A band of its own wide enough for the dent: the region and the part pass.
+  RegionConfig wide = around;
+  wide.has_tolerance = true;
+  wide.tolerance = {30.0 * sigma, -30.0 * sigma};
+  const InspectionResult passed = inspectWith({wide});
+  EXPECT_EQ(passed.verdict, Verdict::kPass) << passed.verdict_reason;
+  EXPECT_TRUE(passed.defects.empty());
+  ASSERT_EQ(passed.regions.size(), 1u);
+  EXPECT_EQ(passed.regions[0].verdict, Verdict::kPass) << passed.regions[0].verdict_reason;
+  EXPECT_EQ(passed.regions[0].tolerance.lower, -30.0 * sigma);
+  EXPECT_EQ(passed.regions[0].deviation.in_tolerance_fraction, 1.0);
+  // With a measurement uncertainty U = 5 σ and the part at ±20 σ, the dent (below -12 σ) lies
+  // outside the part's acceptance zone (±15 σ) but inside the region's (±25 σ): the region's
+  // band is narrowed by U, not the part's, and the part is proven to conform.
+  PipelineConfig guarded = withBand(20.0 * sigma);
+  guarded.verdict.measurement_uncertainty = 5.0 * sigma;
+  const InspectionResult unproven = inspectAt(blade(), dented.scan, dented.T_cad_scan, guarded);
+  EXPECT_EQ(unproven.verdict, Verdict::kNotEvaluated) << unproven.verdict_reason;
+  guarded.regions = {wide};
+  const InspectionResult proven = inspectAt(blade(), dented.scan, dented.T_cad_scan, guarded);
+  EXPECT_EQ(proven.verdict, Verdict::kPass) << proven.verdict_reason;
+  ASSERT_EQ(proven.regions.size(), 1u);
+  EXPECT_EQ(proven.regions[0].verdict, Verdict::kPass) << proven.regions[0].verdict_reason;
+  EXPECT_EQ(proven.regions[0].defects_outside_acceptance, 0u);
+
+  // Left out: measured and shown, judged nowhere.
+  RegionConfig left_out = around;
+  left_out.evaluate = false;
+  const InspectionResult hidden = inspectWith({left_out});
+  EXPECT_EQ(hidden.verdict, Verdict::kPass) << hidden.verdict_reason;
+  EXPECT_TRUE(hidden.defects.empty());
+  EXPECT_EQ(hidden.deviation.excluded, inside);
+  EXPECT_EQ(hidden.deviation.evaluated + hidden.deviation.unmatched + hidden.deviation.excluded,
+            hidden.counts.scan_points);
+  EXPECT_GT(hidden.deviation.min, -8.0 * sigma);  // the dent is not in the statistics
+  ASSERT_EQ(hidden.regions.size(), 1u);
+  EXPECT_EQ(hidden.regions[0].verdict, Verdict::kNotEvaluated);
+  EXPECT_EQ(hidden.regions[0].deviation.evaluated, inside);  // but it is in the region's
+  EXPECT_EQ(hidden.regions[0].deviation.min, plain.deviation.min);
+
+  // A region the scan never reaches: not evaluated itself; the part too once it asks for cover.
+  RegionConfig elsewhere;
+  elsewhere.name = "elsewhere";
+  elsewhere.boxes.push_back({Eigen::Vector3d::Constant(10.0), Eigen::Vector3d::Constant(11.0)});
+  const InspectionResult unseen = inspectWith({left_out, elsewhere});
+  EXPECT_EQ(unseen.verdict, Verdict::kPass) << unseen.verdict_reason;
+  EXPECT_EQ(unseen.regions[1].verdict, Verdict::kNotEvaluated);
+  EXPECT_NE(unseen.regions[1].verdict_reason.find("no scan point"), std::string::npos);
+  elsewhere.min_coverage = 0.5;
+  const InspectionResult uncovered = inspectWith({left_out, elsewhere});
+  EXPECT_EQ(uncovered.verdict, Verdict::kNotEvaluated);
+  EXPECT_NE(uncovered.verdict_reason.find("region 'elsewhere'"), std::string::npos)
+      << uncovered.verdict_reason;
+}
+
 TEST(Inspection, ScanDescriptorsMustBeComputedLikeTheModels) {
   // The blade was loaded with the default descriptor settings; a pipeline with other ones would
   // compare descriptors computed two ways. It is refused before any stage runs, with a status
