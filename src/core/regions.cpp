@@ -3,12 +3,11 @@
 #include "freeform_inspection/regions.h"
 
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
+#include "io/file_util.h"
 #include <yaml-cpp/yaml.h>
 
 namespace freeform_inspection {
@@ -135,27 +134,22 @@ RegionsLoadResult parseRegions(const std::string& yaml_text) {
     errors = validate(result.regions);
   }
   if (!errors.empty()) {
-    std::string message = "invalid regions: ";
-    for (std::size_t i = 0; i < errors.size(); ++i) {
-      message += (i > 0 ? "; " : "") + errors[i];
-    }
-    result.status = Status::failure(StatusCode::kInvalidInput, message);
+    result.status =
+        Status::failure(StatusCode::kInvalidInput, "invalid regions: " + joinMessages(errors));
     result.regions.clear();
   }
   return result;
 }
 
 RegionsLoadResult loadRegionsFile(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) {
+  io_internal::FileBytes bytes;
+  const Status read = io_internal::readWholeFile(path, &bytes);
+  if (!read.ok()) {
     RegionsLoadResult result;
-    result.status =
-        Status::failure(StatusCode::kInvalidInput, "cannot read regions file '" + path + "'");
+    result.status = Status::failure(read.code, "regions file: " + read.message);
     return result;
   }
-  std::stringstream text;
-  text << file.rdbuf();
-  RegionsLoadResult result = parseRegions(text.str());
+  RegionsLoadResult result = parseRegions(std::string(bytes.view()));
   if (!result.status.ok()) {
     result.status.message = "regions file '" + path + "': " + result.status.message;
   }
