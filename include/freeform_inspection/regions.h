@@ -39,6 +39,9 @@ struct RegionConfig {
   /// False: its points are left out of the statistics, the defects and the verdict (they stay
   /// in the deviation map, measured).
   bool evaluate = true;
+  /// False: its points are left out of the best fit (stock left for a later operation, a
+  /// surface the fixture bends): after the registration the pose is refitted to the rest.
+  bool align = true;
   /// NOT_EVALUATED (the region and the part) when the scan covers less of the region's CAD
   /// surface than this; 0: any view.
   double min_coverage = 0.0;
@@ -56,8 +59,8 @@ struct RegionsLoadResult {
 
 /// @brief Reads regions from YAML: a top-level `regions:` list of maps with `name`, `boxes`
 /// (a list of `{min: [x, y, z], max: [x, y, z]}`, metres in the CAD frame), optional
-/// `tolerance: {upper, lower}`, `evaluate` and `min_coverage`. Unknown keys are errors, as in
-/// the configuration file.
+/// `tolerance: {upper, lower}`, `evaluate`, `align` and `min_coverage`. Unknown keys are errors, as
+/// in the configuration file.
 RegionsLoadResult parseRegions(const std::string& yaml_text);
 
 /// @brief parseRegions() of a file; an unreadable file is kInvalidInput naming it.

@@ -24,6 +24,7 @@
 namespace freeform_inspection {
 namespace {
 
+using internal::fitToAlignedRegions;
 using internal::formatLength;
 using internal::judge;
 using internal::measurePart;
@@ -1366,6 +1367,14 @@ void runStages(const Model& model,
     return;
   }
   watch->start = Clock::now();
+  if (alignment.mode != Alignment::Mode::kFixed &&
+      result->registration == RegistrationStatus::kOk) {
+    fitToAlignedRegions(model,
+                        points,
+                        oriented ? descriptors.pointNormals(points.size()) : Points(),
+                        config,
+                        result);
+  }
   measurePart(model, cleaned.scan, descriptors, config, result);
   if (alignment.mode == Alignment::Mode::kFixed) {
     result->pose_uncertainty = PoseUncertainty();  // no fit, so no spread of one

@@ -27,6 +27,15 @@ void measurePart(const Model& model,
 /// named region's (judgeRegions()).
 void judge(const PipelineConfig& config, InspectionResult* result);
 
+/// The registered pose refitted to the scan points on regions that align (RegionConfig::align;
+/// region_fit.cpp): the rest (stock left for a later operation) does not pull it. Nothing when
+/// every region aligns; the whole scan's pose, with a warning, when too few points are left.
+void fitToAlignedRegions(const Model& model,
+                         const Points& scan_points,
+                         const Points& point_normals,
+                         const PipelineConfig& config,
+                         InspectionResult* result);
+
 // Named regions (regions.h), region_verdict.cpp.
 
 /// The deviation the verdict reads: the map's, NaN on regions left out (RegionConfig::evaluate);

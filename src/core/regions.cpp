@@ -42,7 +42,7 @@ RegionConfig parseRegion(const YAML::Node& node, std::size_t position) {
   if (!node.IsMap()) {
     throw std::runtime_error(what + " must be a map with name and boxes");
   }
-  checkKeys(node, {"name", "boxes", "tolerance", "evaluate", "min_coverage"}, what);
+  checkKeys(node, {"name", "boxes", "tolerance", "evaluate", "align", "min_coverage"}, what);
   if (node["name"]) {
     region.name = node["name"].as<std::string>();
   }
@@ -70,6 +70,9 @@ RegionConfig parseRegion(const YAML::Node& node, std::size_t position) {
   }
   if (node["evaluate"]) {
     region.evaluate = node["evaluate"].as<bool>();
+  }
+  if (node["align"]) {
+    region.align = node["align"].as<bool>();
   }
   if (node["min_coverage"]) {
     region.min_coverage = node["min_coverage"].as<double>();

@@ -76,8 +76,8 @@ std::vector<std::pair<std::string, std::string>> configEntries(const PipelineCon
       text += "tolerance " + numberText(region.tolerance.lower) + " to " +
               numberText(region.tolerance.upper) + "; ";
     }
-    text += std::string("evaluate ") + (region.evaluate ? "true" : "false") + "; min_coverage " +
-            numberText(region.min_coverage);
+    text += std::string("evaluate ") + (region.evaluate ? "true" : "false") + "; align " +
+            (region.align ? "true" : "false") + "; min_coverage " + numberText(region.min_coverage);
     entries.emplace_back("regions/" + region.name, text);
   }
   return entries;

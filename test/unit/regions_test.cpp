@@ -28,6 +28,7 @@ regions:
       - {min: [0, 0, 0], max: [0.01, 0.01, 0.01]}
       - {min: [0.05, 0, 0.05], max: [0.06, 0.01, 0.06]}
     evaluate: false
+    align: false
 )";
 
 TEST(Regions, AFileIsReadWithEveryField) {
@@ -42,11 +43,13 @@ TEST(Regions, AFileIsReadWithEveryField) {
   EXPECT_EQ(root.tolerance.upper, 0.0005);
   EXPECT_EQ(root.tolerance.lower, -0.0003);
   EXPECT_TRUE(root.evaluate);
+  EXPECT_TRUE(root.align);
   EXPECT_EQ(root.min_coverage, 0.5);
   const RegionConfig& clamp = loaded.regions[1];
   EXPECT_EQ(clamp.boxes.size(), 2u);
   EXPECT_FALSE(clamp.has_tolerance);
   EXPECT_FALSE(clamp.evaluate);
+  EXPECT_FALSE(clamp.align);
   const ToleranceConfig part{1e-4, -2e-4};
   EXPECT_EQ(regionTolerance(loaded.regions, 0, part).lower, -0.0003);
   EXPECT_EQ(regionTolerance(loaded.regions, 1, part).lower, -2e-4);  // no band of its own
