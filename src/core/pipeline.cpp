@@ -1126,6 +1126,7 @@ void registerFrom(const Model& model,
   result->status = Status::success();
   result->status.message = "refined from the given pose: RMS " + formatLength(result->rmse) +
                            ", fitness " + std::to_string(result->fitness);
+  fitToAlignedRegions(model, scan_points, point_normals, config, result);
   // How far the part sat from the given pose (a fixture's nominal): the turn, and the shift of
   // the scan's centroid, where the part is.
   const Eigen::Vector3d reference = set.centroid();
@@ -1367,7 +1368,8 @@ void runStages(const Model& model,
     return;
   }
   watch->start = Clock::now();
-  if (alignment.mode != Alignment::Mode::kFixed &&
+  // registerFrom() refits its own pose, before it measures the offset from the given one.
+  if (alignment.mode == Alignment::Mode::kSearch &&
       result->registration == RegistrationStatus::kOk) {
     fitToAlignedRegions(model,
                         points,

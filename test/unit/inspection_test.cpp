@@ -403,6 +403,13 @@ TEST(Inspection, RegionsThatDoNotAlignLeaveThePoseToTheRest) {
   EXPECT_NE(datum.status.message.find("regions that align"), std::string::npos)
       << datum.status.message;
   EXPECT_EQ(whole.status.message.find("regions that align"), std::string::npos);
+  // From a known pose (here the truth) the same refit, before the offset from it is measured.
+  const InspectionResult refined = inspectFrom(blade(), stocked.scan, stocked.T_cad_scan, config);
+  ASSERT_EQ(refined.registration, RegistrationStatus::kOk) << refined.status.message;
+  EXPECT_NE(refined.status.message.find("regions that align"), std::string::npos);
+  EXPECT_LT(shift(refined), 0.3 * sigma);
+  EXPECT_NEAR(
+      refined.offset_from_initial_deg, rotationDeg(refined.T_cad_scan, stocked.T_cad_scan), 1e-6);
   // Nothing left to align on: the whole scan's pose, said so.
   config.regions[0].boxes[0] = {Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0)};
   const InspectionResult nothing = inspect(blade(), stocked.scan, config);
