@@ -1116,10 +1116,8 @@ void registerFrom(const Model& model,
   if (!watch.icpDone(icp)) {
     return;
   }
-  const bool accepted =
-      acceptPose(model, set, icp, surface_share, coarse_truncation, faces, config, result);
-  watch.lap("verification");
-  if (!accepted) {
+  if (!acceptPose(model, set, icp, surface_share, coarse_truncation, faces, config, result)) {
+    watch.lap("verification");
     return;
   }
   result->registration = RegistrationStatus::kOk;
@@ -1127,6 +1125,7 @@ void registerFrom(const Model& model,
   result->status.message = "refined from the given pose: RMS " + formatLength(result->rmse) +
                            ", fitness " + std::to_string(result->fitness);
   fitToAlignedRegions(model, scan_points, point_normals, config, result);
+  watch.lap("verification");
   // How far the part sat from the given pose (a fixture's nominal): the turn, and the shift of
   // the scan's centroid, where the part is.
   const Eigen::Vector3d reference = set.centroid();
