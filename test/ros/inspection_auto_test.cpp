@@ -83,6 +83,15 @@ TEST(AutoInspect, APublishedScanIsInspectedReportedAndDiagnosed) {
   EXPECT_EQ(report->header.frame_id, "scanner");
   EXPECT_EQ(report->header.stamp, ros::Time(1234.5));
   expectSamplePose(tf2::transformToEigen(report->transform), "~result transform");
+  // The regions of ~regions_file (data/blade/blade_regions.yaml): the tip left out, the root
+  // judged in its own band.
+  ASSERT_EQ(report->regions.size(), 2u);
+  EXPECT_EQ(report->regions[0].name, "tip");
+  EXPECT_EQ(report->regions[0].status, InspectionReport::NOT_EVALUATED);
+  EXPECT_EQ(report->regions[1].name, "root");
+  EXPECT_EQ(report->regions[1].status, InspectionReport::PASS) << report->regions[1].message;
+  EXPECT_EQ(report->regions[1].tolerance_upper, 0.0005);
+  EXPECT_GT(report->deviation.n_excluded, 0u);
   const auto on_tf = partOnTf(ros::Time(1234.5));
   ASSERT_TRUE(on_tf);
   expectSamplePose(*on_tf, "tf scanner → part");
