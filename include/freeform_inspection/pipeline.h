@@ -182,6 +182,10 @@ struct InspectionResult {
   InspectionCounts counts;
   std::vector<StageTiming> timings;   ///< per stage, last entry "total"
   std::vector<std::string> warnings;  ///< non-fatal findings for the caller to log
+
+  /// The name of named region `region` (DefectRegion::region, DeviationMap::region); "" for -1,
+  /// the rest of the part (a region's name is never empty).
+  std::string regionName(int region) const;
 };
 
 /// Called with the name of the stage about to start ("clean", "descriptors", "features",

@@ -20,7 +20,7 @@
 namespace freeform_inspection::internal {
 namespace {
 
-std::string describeDefect(const DefectRegion& defect, const std::vector<RegionConfig>& regions) {
+std::string describeDefect(const DefectRegion& defect, const InspectionResult& result) {
   char text[160];
   std::snprintf(text,
                 sizeof(text),
@@ -31,10 +31,8 @@ std::string describeDefect(const DefectRegion& defect, const std::vector<RegionC
                 defect.centroid.x(),
                 defect.centroid.y(),
                 defect.centroid.z());
-  if (defect.region >= 0) {
-    return text + (" in region '" + regions[static_cast<std::size_t>(defect.region)].name + "'");
-  }
-  return text;
+  const std::string region = result.regionName(defect.region);
+  return region.empty() ? std::string(text) : text + (" in region '" + region + "'");
 }
 
 // Each point's band widened (by u > 0) or narrowed (u < 0). A band that narrowing empties holds
@@ -116,7 +114,7 @@ void judgeWithUncertainty(const PipelineConfig& config, InspectionResult* result
         " region(s) outside the tolerance band widened by " + u + " " + rejection +
         " (nonconformance proven, ISO 14253-1); largest: " +
         (result->defects.empty() ? std::string("-")
-                                 : describeDefect(result->defects.front(), config.regions));
+                                 : describeDefect(result->defects.front(), *result));
     return;
   }
   if (zones.inside_rejection_fraction < min_inside) {
@@ -326,9 +324,9 @@ void judgePart(const PipelineConfig& config, InspectionResult* result) {
   }
   if (!result->defects.empty()) {
     result->verdict = Verdict::kFail;
-    result->verdict_reason =
-        std::to_string(result->defects.size()) + " region(s) outside the tolerance band " + band +
-        "; largest: " + describeDefect(result->defects.front(), config.regions);
+    result->verdict_reason = std::to_string(result->defects.size()) +
+                             " region(s) outside the tolerance band " + band +
+                             "; largest: " + describeDefect(result->defects.front(), *result);
     return;
   }
   if (stats.in_tolerance_fraction < config.verdict.min_in_tolerance_fraction) {

@@ -1385,6 +1385,12 @@ void runStages(const Model& model,
 
 }  // namespace
 
+std::string InspectionResult::regionName(int region) const {
+  return region >= 0 && static_cast<std::size_t>(region) < regions.size()
+             ? regions[static_cast<std::size_t>(region)].name
+             : std::string();
+}
+
 const char* toString(RegistrationStatus status) {
   switch (status) {
     case RegistrationStatus::kOk:

@@ -204,9 +204,7 @@ void fillDeviation(const fi::InspectionResult& result,
     message.bbox_min = toPoint(defect.bbox_min);
     message.bbox_max = toPoint(defect.bbox_max);
     message.cad_chord_error = defect.cad_chord_error;
-    if (defect.region >= 0 && static_cast<std::size_t>(defect.region) < result.regions.size()) {
-      message.region = result.regions[static_cast<std::size_t>(defect.region)].name;
-    }
+    message.region = result.regionName(defect.region);
     report->defects.push_back(message);
   }
 }

@@ -213,12 +213,8 @@ std::string defectsSection(const InspectionResult& result) {
       "<th title=\"how far the CAD's faces there may lie from the curved surface they stand "
       "for\">CAD chord error</th><th>region</th></tr>\n";
   for (std::size_t i = 0; i < defects.size(); ++i) {
-    const int region = defects[i].region;
-    html +=
-        defectRow(i,
-                  defects[i],
-                  region >= 0 ? escapeHtml(result.regions[static_cast<std::size_t>(region)].name)
-                              : std::string("&ndash;"));
+    const std::string region = result.regionName(defects[i].region);
+    html += defectRow(i, defects[i], region.empty() ? "&ndash;" : escapeHtml(region));
   }
   return html + "</table>\n";
 }

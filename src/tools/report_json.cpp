@@ -73,10 +73,8 @@ nlohmann::ordered_json deviationJson(const DeviationStatistics& d) {
 
 // The named region a defect lies in, null for the rest of the part.
 nlohmann::ordered_json regionName(const InspectionResult& result, int region) {
-  if (region < 0 || static_cast<std::size_t>(region) >= result.regions.size()) {
-    return nullptr;
-  }
-  return result.regions[static_cast<std::size_t>(region)].name;
+  const std::string name = result.regionName(region);
+  return name.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(name);
 }
 
 nlohmann::ordered_json defectsJson(const InspectionResult& result) {
