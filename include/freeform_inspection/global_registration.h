@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,9 @@ struct GlobalRegistrationConfig {
   int verified_hypotheses = 128;       ///< best fits by eq. 14 verified against the whole scan
   std::size_t verification_points = 1500;    ///< scan cells used for verification (at most)
   double verification_distance_cells = 2.5;  ///< truncation distance of the verification score
-  int refined_hypotheses = 12;  ///< best verified poses refined by ICP before the final choice
+  /// Best verified poses refined by ICP before the final choice. Only these need their exact
+  /// scores: a hypothesis that verification shows cannot rank among them is dropped early.
+  int refined_hypotheses = 12;
   /// Two distinct refined poses whose scores are within this ratio are reported as ambiguous.
   double ambiguity_ratio = 0.93;
   double min_score = 0.4;    ///< a final verification score below this is a failed registration
@@ -66,9 +69,11 @@ struct PoseHypothesis {
 /// Result of the global stage.
 struct GlobalRegistrationResult {
   Status status;
-  std::vector<PoseHypothesis> hypotheses;  ///< verified, distinct, best score first
-  std::size_t consistent_triplets = 0;     ///< triplets that passed the triangle check
-  std::size_t correspondences = 0;         ///< distinct (feature, CAD cell) pairs in those triplets
+  /// Verified, distinct, best score first: those that can rank among the `refined_hypotheses`
+  /// best (config), each with its exact score.
+  std::vector<PoseHypothesis> hypotheses;
+  std::size_t consistent_triplets = 0;  ///< triplets that passed the triangle check
+  std::size_t correspondences = 0;      ///< distinct (feature, CAD cell) pairs in those triplets
 };
 
 /// Points (with unit outward normals) a pose is verified on.
@@ -100,11 +105,14 @@ VerificationSet makeVerificationSet(const SurfaceGraph& scan,
 
 /// @brief Share of the set the pose explains: mean over points of max(0, 1 − d²/τ²) where d is
 /// the distance to the CAD surface, counted only where the normals agree.
+/// @param floor once the score is sure to end below it, the search stops and returns a bound
+/// that is below it too (the score itself when it never is).
 double verificationScore(const Eigen::Isometry3d& T_cad_scan,
                          const VerificationSet& set,
                          const MeshQuery& cad,
                          double truncation,
-                         double normal_tolerance_deg);
+                         double normal_tolerance_deg,
+                         double floor = -std::numeric_limits<double>::infinity());
 
 /// @brief Per point of the set, 1 − d²/τ² where d is the distance to the nearest CAD surface that
 /// faces the way the point's normal does (MeshQuery::closestFacing), 0 where none lies within τ.

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <utility>
 
 #include <Eigen/Geometry>
@@ -368,7 +370,8 @@ double verificationScore(const Eigen::Isometry3d& T_cad_scan,
                          const VerificationSet& set,
                          const MeshQuery& cad,
                          double truncation,
-                         double normal_tolerance_deg) {
+                         double normal_tolerance_deg,
+                         double floor) {
   // Serial: callers score many poses in parallel instead (one parallel region per batch of
   // poses, not per pose, so a busy core does not stall every call). The nearest surface only:
   // the ranking of hypotheses was settled with it, and it is the cheaper query.
@@ -376,8 +379,15 @@ double verificationScore(const Eigen::Isometry3d& T_cad_scan,
     return 0.0;
   }
   const double min_cos = std::cos(normal_tolerance_deg * kDegree);
+  const auto count = static_cast<double>(set.points.size());
   double sum = 0.0;
   for (std::size_t i = 0; i < set.points.size(); ++i) {
+    // Each term is at most 1: once even a perfect rest cannot reach the floor, that bound is
+    // the answer.
+    const double best_possible = (sum + (count - static_cast<double>(i))) / count;
+    if (best_possible < floor) {
+      return best_possible;
+    }
     const ClosestPoint closest = cad.closest(T_cad_scan * set.points[i], truncation);
     if (!closest.found) {
       continue;
@@ -482,6 +492,58 @@ bool refinedOnto(const Eigen::Isometry3d& best,
   return left <= 1.0 && left <= (1.0 - share) * poseGap(best, found, reference, cell_size);
 }
 
+namespace {
+
+// Verification scores of the hypotheses, in batches of a fixed size. From the second batch on, a
+// hypothesis whose score cannot reach the `ranked`-th best of those scored before it is dropped
+// (verificationScore's floor): it ranks below the `ranked` best whatever follows, so these keep
+// their exact scores, and the batches fix which hypotheses are dropped whatever the thread count.
+void scoreRanked(std::vector<PoseHypothesis>* hypotheses,
+                 const VerificationSet& set,
+                 const MeshQuery& cad,
+                 double truncation,
+                 double normal_tolerance_deg,
+                 std::size_t ranked) {
+  constexpr long kBatch = 16;
+  const auto count = static_cast<long>(hypotheses->size());
+  std::vector<double> scored;  // scores of the hypotheses kept so far
+  std::vector<char> dropped(hypotheses->size(), 0);
+  for (long start = 0; start < count; start += kBatch) {
+    double floor = -std::numeric_limits<double>::infinity();
+    if (ranked > 0 && scored.size() >= ranked) {
+      std::nth_element(scored.begin(),
+                       scored.begin() + static_cast<long>(ranked - 1),
+                       scored.end(),
+                       std::greater<>());
+      floor = scored[ranked - 1];
+    }
+    const long end = std::min(count, start + kBatch);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (long h = start; h < end; ++h) {
+      auto& hypothesis = (*hypotheses)[static_cast<std::size_t>(h)];
+      hypothesis.score = verificationScore(
+          hypothesis.T_cad_scan, set, cad, truncation, normal_tolerance_deg, floor);
+    }
+    for (long h = start; h < end; ++h) {
+      const double score = (*hypotheses)[static_cast<std::size_t>(h)].score;
+      if (score < floor) {
+        dropped[static_cast<std::size_t>(h)] = 1;
+      } else {
+        scored.push_back(score);
+      }
+    }
+  }
+  std::size_t kept = 0;
+  for (std::size_t h = 0; h < hypotheses->size(); ++h) {
+    if (dropped[h] == 0) {
+      (*hypotheses)[kept++] = (*hypotheses)[h];
+    }
+  }
+  hypotheses->resize(kept);
+}
+
+}  // namespace
+
 GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
                                           const SurfaceGraph& cad,
                                           const CorrespondenceResult& candidates,
@@ -550,13 +612,12 @@ GlobalRegistrationResult registerGlobally(const SurfaceGraph& scan,
       break;
     }
   }
-  const auto count = static_cast<long>(result.hypotheses.size());
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long h = 0; h < count; ++h) {
-    auto& hypothesis = result.hypotheses[static_cast<std::size_t>(h)];
-    hypothesis.score = verificationScore(
-        hypothesis.T_cad_scan, set, cad_mesh, truncation, config.normal_tolerance_deg);
-  }
+  scoreRanked(&result.hypotheses,
+              set,
+              cad_mesh,
+              truncation,
+              config.normal_tolerance_deg,
+              static_cast<std::size_t>(config.refined_hypotheses));
   std::stable_sort(
       result.hypotheses.begin(),
       result.hypotheses.end(),

@@ -286,6 +286,7 @@ std::vector<Symmetry> findSymmetries(const DescriptorResult& cad,
                                                          correspondence);
   GlobalRegistrationConfig config;
   config.verified_hypotheses = 64;  // self-matches are few; the scan's default is generous
+  config.refined_hypotheses = config.verified_hypotheses;  // every score above min_score counts
   config.max_fits = 20000;
   config.verification_points = 600;
   // A failed self-registration still leaves the principal-axis starts below.

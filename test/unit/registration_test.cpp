@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include "freeform_inspection/features.h"
 #include "freeform_inspection/global_registration.h"
 #include "freeform_inspection/io.h"
 #include "freeform_inspection/mesh_query.h"
@@ -1264,6 +1265,64 @@ TEST(Registration, VerificationCountsNoisyPointsOnAWallThinnerThanTheNoise) {
   EXPECT_LT(nearest_agrees, 0.9 * 1500);
   // Moved 3 mm off the wall, the points are explained by nothing.
   EXPECT_LT(explained(Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 0.003))), 0.01);
+}
+
+TEST(Registration, HypothesesThatCannotRankAmongTheRefinedAreDroppedWithTheBestExact) {
+  // The blade registered to itself, as the symmetry search does: its hypotheses verified in
+  // full, then with only the best 12 needing exact scores.
+  const Model& model = blade();
+  const DescriptorResult& cad = model.descriptors();
+  const FeatureResult features =
+      selectFeatures(cad.graph.centroids, cad.cell_values, cad.radii.back(), FeatureConfig());
+  const CorrespondenceResult candidates = findCandidates(cad.cell_values,
+                                                         features.cells,
+                                                         cad.cell_values,
+                                                         cad.graph.centroids,
+                                                         model.cellSize(),
+                                                         CorrespondenceConfig());
+  GlobalRegistrationConfig config;
+  config.max_fits = 20000;
+  config.verification_points = 600;
+  const auto run = [&](int refined) {
+    config.refined_hypotheses = refined;
+    return registerGlobally(cad.graph,
+                            cad.graph,
+                            candidates,
+                            model.query(),
+                            model.cellSize(),
+                            cad.radii.back(),
+                            config,
+                            true);
+  };
+  const GlobalRegistrationResult full = run(config.verified_hypotheses);
+  const GlobalRegistrationResult ranked = run(12);
+  ASSERT_TRUE(full.status.ok()) << full.status.message;
+  ASSERT_EQ(static_cast<int>(full.hypotheses.size()), config.verified_hypotheses);
+  ASSERT_GE(ranked.hypotheses.size(), 12u);
+  EXPECT_LT(ranked.hypotheses.size(), full.hypotheses.size()) << "nothing was dropped";
+  for (std::size_t h = 0; h < 12; ++h) {
+    EXPECT_EQ(ranked.hypotheses[h].score, full.hypotheses[h].score) << h;
+    EXPECT_TRUE(ranked.hypotheses[h].T_cad_scan.isApprox(full.hypotheses[h].T_cad_scan, 0.0)) << h;
+  }
+  // Everything dropped scored below the 12th best.
+  const double twelfth = full.hypotheses[11].score;
+  std::size_t below = 0;
+  for (const PoseHypothesis& h : full.hypotheses) {
+    below += h.score < twelfth ? 1 : 0;
+  }
+  EXPECT_GE(below, full.hypotheses.size() - ranked.hypotheses.size());
+
+  // The floor: met, the exact score; missed, a bound between the score and the floor.
+  const VerificationSet set = makeVerificationSet(cad.graph, 600, true);
+  const double truncation = config.verification_distance_cells * model.cellSize();
+  const Eigen::Isometry3d pose = full.hypotheses[20].T_cad_scan;
+  const double score = verificationScore(pose, set, model.query(), truncation, 40.0);
+  ASSERT_GT(score, 0.05);
+  ASSERT_LT(score, 0.95);
+  EXPECT_EQ(verificationScore(pose, set, model.query(), truncation, 40.0, score), score);
+  const double bound = verificationScore(pose, set, model.query(), truncation, 40.0, score + 0.05);
+  EXPECT_LT(bound, score + 0.05);
+  EXPECT_GE(bound, score);
 }
 
 TEST(Registration, PosesAreListedApartBeyondTenDegreesOrThreeCells) {
