@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 
@@ -44,7 +45,7 @@ sensor_msgs::PointCloud2 deviationCloud(const fi::InspectionResult& result,
   sensor_msgs::PointCloud2 cloud;
   cloud.header = header;
   sensor_msgs::PointCloud2Modifier modifier(cloud);
-  modifier.setPointCloud2Fields(6,
+  modifier.setPointCloud2Fields(7,
                                 "x",
                                 1,
                                 sensor_msgs::PointField::FLOAT32,
@@ -60,6 +61,9 @@ sensor_msgs::PointCloud2 deviationCloud(const fi::InspectionResult& result,
                                 "in_tolerance",
                                 1,
                                 sensor_msgs::PointField::UINT8,
+                                "region",
+                                1,
+                                sensor_msgs::PointField::INT32,
                                 "rgb",
                                 1,
                                 sensor_msgs::PointField::FLOAT32);
@@ -68,8 +72,9 @@ sensor_msgs::PointCloud2 deviationCloud(const fi::InspectionResult& result,
   sensor_msgs::PointCloud2Iterator<float> xyz(cloud, "x");
   sensor_msgs::PointCloud2Iterator<float> deviation(cloud, "deviation");
   sensor_msgs::PointCloud2Iterator<std::uint8_t> inside(cloud, "in_tolerance");
+  sensor_msgs::PointCloud2Iterator<std::int32_t> region(cloud, "region");
   sensor_msgs::PointCloud2Iterator<float> rgb(cloud, "rgb");
-  for (std::size_t k = 0; k < count; ++k, ++xyz, ++deviation, ++inside, ++rgb) {
+  for (std::size_t k = 0; k < count; ++k, ++xyz, ++deviation, ++inside, ++region, ++rgb) {
     const std::size_t i = k * total / count;  // even stride over the scan
     xyz[0] = static_cast<float>(map.points[i].x());
     xyz[1] = static_cast<float>(map.points[i].y());
@@ -77,6 +82,7 @@ sensor_msgs::PointCloud2 deviationCloud(const fi::InspectionResult& result,
     const double d = map.deviation[i];
     *deviation = static_cast<float>(d);
     *inside = fi::inTolerance(d, tolerance.at(i)) ? 1 : 0;
+    *region = map.region.empty() ? -1 : map.region[i];
     *rgb = packRgb(fi::deviationColour(d, tolerance.at(i)));
   }
   return cloud;

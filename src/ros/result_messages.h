@@ -20,7 +20,8 @@ namespace freeform_inspection_ros {
 namespace fi = freeform_inspection;
 
 /// @brief The deviation map as a PointCloud2 in the part (CAD) frame `header.frame_id`:
-/// FLOAT32 x, y, z, deviation [m] (NaN where no CAD is near), UINT8 in_tolerance, and rgb
+/// FLOAT32 x, y, z, deviation [m] (NaN where no CAD is near), UINT8 in_tolerance, INT32 region
+/// (index into the report's regions, −1 for the rest of the part and unmatched points), and rgb
 /// (packed FLOAT32, the banded colour scale of deviation_colours.h). At most `max_points`
 /// points, taken evenly (0 = all); unorganized (height 1). `tolerance`: each point's band
 /// (regions.h's toleranceBands()) or the part's.

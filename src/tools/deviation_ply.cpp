@@ -37,7 +37,8 @@ std::string header(std::size_t vertices, std::size_t faces) {
       "frame, metres\ncomment deviation NaN = no CAD surface near the point\nelement vertex " +
       std::to_string(vertices) +
       "\nproperty float x\nproperty float y\nproperty float z\nproperty float deviation\n"
-      "property uchar in_tolerance\nproperty int defect\nproperty float shape_deviation\n"
+      "property uchar in_tolerance\nproperty int defect\nproperty int region\n"
+      "property float shape_deviation\n"
       "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   if (faces > 0) {
     text += "element face " + std::to_string(faces) + "\nproperty list uchar int vertex_indices\n";
@@ -58,6 +59,10 @@ std::string inconsistency(const DeviationMap& map, const Triangles& faces) {
   }
   if (!map.defect.empty() && map.defect.size() != n) {
     return std::to_string(map.defect.size()) + " defect labels for " + std::to_string(n) +
+           " points";
+  }
+  if (!map.region.empty() && map.region.size() != n) {
+    return std::to_string(map.region.size()) + " region labels for " + std::to_string(n) +
            " points";
   }
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
@@ -86,6 +91,7 @@ void appendVertex(std::string* out,
   appendLittleEndian(out, deviation);
   appendLittleEndian(out, static_cast<std::uint8_t>(inTolerance(deviation, tolerance) ? 1 : 0));
   appendLittleEndian(out, static_cast<std::int32_t>(map.defect.empty() ? -1 : map.defect[i]));
+  appendLittleEndian(out, static_cast<std::int32_t>(map.region.empty() ? -1 : map.region[i]));
   appendLittleEndian(out,
                      map.shape_deviation.empty() ? std::numeric_limits<float>::quiet_NaN()
                                                  : map.shape_deviation[i]);
@@ -105,7 +111,7 @@ Status saveDeviationPly(const std::string& path,
     return invalid(path, problem);
   }
   std::string bytes = header(map.size(), faces.size());
-  bytes.reserve(bytes.size() + 28 * map.size() + 13 * faces.size());
+  bytes.reserve(bytes.size() + 32 * map.size() + 13 * faces.size());
   for (std::size_t i = 0; i < map.size(); ++i) {
     appendVertex(&bytes, map, i, tolerance);
   }

@@ -5,6 +5,7 @@
 // Inspect with a status for every kind of request and keeps serving after bad ones. The nodelet
 // test runs the same cases against the nodelet in a namespace.
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -116,16 +117,20 @@ TEST(InspectionNode, RegistersTheSampleScanJudgesItAndPublishesPoseAndDeviation)
   for (const auto& field : cloud->fields) {
     fields.push_back(field.name);
   }
-  EXPECT_EQ(fields, (std::vector<std::string>{"x", "y", "z", "deviation", "in_tolerance", "rgb"}));
+  EXPECT_EQ(
+      fields,
+      (std::vector<std::string>{"x", "y", "z", "deviation", "in_tolerance", "region", "rgb"}));
   sensor_msgs::PointCloud2ConstIterator<float> x(*cloud, "x");
   sensor_msgs::PointCloud2ConstIterator<float> d(*cloud, "deviation");
+  sensor_msgs::PointCloud2ConstIterator<std::int32_t> r(*cloud, "region");
   const Eigen::Isometry3d T_cad_scan = sampleTruth();
   double worst = 0.0;
-  for (std::size_t i = 0; i < scan.scan.points.size(); i += 97, x += 97, d += 97) {
+  for (std::size_t i = 0; i < scan.scan.points.size(); i += 97, x += 97, d += 97, r += 97) {
     // In the part frame: the truth maps the scan point there, up to the pose error.
     const Eigen::Vector3d expected = T_cad_scan * scan.scan.points[i];
     worst = std::max(worst, (Eigen::Vector3d(x[0], x[1], x[2]) - expected).norm());
     EXPECT_LT(std::abs(*d), 1e-4);
+    EXPECT_EQ(*r, -1) << "no named regions";
   }
   EXPECT_LT(worst, 0.0005);
   const auto result =
@@ -390,7 +395,9 @@ TEST(InspectionNode, LoadModelWithRegionsJudgesEachRegion) {
   Inspect::Request request = cloudRequest(sampleCloud());
   request.tolerance_upper = 0.00001;
   request.tolerance_lower = -0.00001;
-  const Inspect::Response judged = callInspect(request);
+  Inspect::Response judged;
+  const auto cloud = receiveDuring<sensor_msgs::PointCloud2>(
+      nodeName() + "/deviation", [&] { judged = callInspect(request); });
   EXPECT_EQ(judged.status, Inspect::Response::FAIL) << judged.message;
   const InspectionReport& report = judged.report;
   ASSERT_EQ(report.regions.size(), 2u);
@@ -407,6 +414,18 @@ TEST(InspectionNode, LoadModelWithRegionsJudgesEachRegion) {
   for (const auto& defect : report.defects) {
     EXPECT_EQ(defect.region, "") << "the airfoil is the rest of the part";
   }
+  // The deviation cloud names each point's region by its place in the report's list.
+  ASSERT_TRUE(cloud) << "no cloud on ~deviation";
+  std::size_t per_region[2] = {0, 0};
+  sensor_msgs::PointCloud2ConstIterator<std::int32_t> region(*cloud, "region");
+  for (; region != region.end(); ++region) {
+    ASSERT_GE(*region, -1);
+    ASSERT_LE(*region, 1);
+    per_region[0] += *region == 0 ? 1 : 0;
+    per_region[1] += *region == 1 ? 1 : 0;
+  }
+  EXPECT_EQ(per_region[0], report.regions[0].deviation.n_points);
+  EXPECT_EQ(per_region[1], report.regions[1].deviation.n_points);
 
   LoadModel bad = with_regions;
   bad.request.regions_uri = "package://freeform_inspection/data/blade/no_such_regions.yaml";

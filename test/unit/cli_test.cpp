@@ -480,7 +480,8 @@ TEST(Cli, RegionsFileJudgesEachRegionWithItsOwnBand) {
   const nlohmann::json part = nlohmann::json::parse(plain.out);
   EXPECT_EQ(part["verdict"], "PASS") << part["verdict_reason"];
   EXPECT_TRUE(part["regions"].empty());
-  const CliRun run = runCli(args + " --regions " + regions);
+  const std::string ply = temp("regions_deviation.ply");
+  const CliRun run = runCli(args + " --regions " + regions + " --deviation " + ply);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["verdict"], "FAIL") << json["verdict_reason"];
@@ -506,6 +507,26 @@ TEST(Cli, RegionsFileJudgesEachRegionWithItsOwnBand) {
   EXPECT_GT(excluded, 0u);
   EXPECT_EQ(json["deviation"]["evaluated"].get<std::size_t>() + excluded,
             part["deviation"]["evaluated"].get<std::size_t>());
+  // The PLY names each measured point's region by its place in `regions`, and flags it in
+  // tolerance by that region's band.
+  namespace rt = freeform_inspection::report_test;
+  const std::vector<rt::DeviationVertex> vertices = rt::readDeviationVertices(slurpBinary(ply));
+  ASSERT_EQ(vertices.size(), json["counts"]["scan_points"].get<std::size_t>());
+  std::size_t per_region[2] = {0, 0};
+  for (const rt::DeviationVertex& v : vertices) {
+    ASSERT_GE(v.region, -1);
+    ASSERT_LE(v.region, 1);
+    if (v.region < 0) {
+      continue;
+    }
+    ASSERT_FALSE(std::isnan(v.deviation));
+    ++per_region[v.region];
+    if (v.region == 1) {
+      EXPECT_EQ(v.in_tolerance, std::abs(v.deviation) <= 0.00001f ? 1 : 0) << v.deviation;
+    }
+  }
+  EXPECT_EQ(per_region[0], tip["deviation"]["evaluated"].get<std::size_t>());
+  EXPECT_EQ(per_region[1], root["deviation"]["evaluated"].get<std::size_t>());
 
   // A bad regions file: exit 2, one line naming the file and the problem, nothing inspected.
   std::ofstream(regions)

@@ -39,13 +39,15 @@ fi::ToleranceConfig tolerance02() {
   return tolerance;
 }
 
-// Four points, one unmatched (NaN), one in each defect; two triangles.
+// Four points, one unmatched (NaN), one in each defect, three in two named regions; two
+// triangles.
 fi::DeviationMap smallMap() {
   fi::DeviationMap map;
   map.points = {{0.001, 0.002, 0.003}, {0.1, 0.0, 0.0}, {0.0, 0.1, 0.0}, {-0.05, 0.025, 0.5}};
   map.deviation = {0.0f, 0.0005f, kNaNf, -0.001f};
   map.shape_deviation = {0.1f, kNaNf, 0.2f, 0.3f};
   map.defect = {-1, 0, -1, 1};
+  map.region = {0, -1, 1, 0};
   return map;
 }
 
@@ -84,14 +86,16 @@ TEST(DeviationPly, StoresEveryPropertyInTheDocumentedLayout) {
   const std::string header = bytes.substr(0, body);
   EXPECT_EQ(header.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
   EXPECT_NE(header.find("\nelement vertex 4\n"), std::string::npos);
-  EXPECT_NE(header.find("property float x\nproperty float y\nproperty float z\nproperty float "
-                        "deviation\nproperty uchar in_tolerance\nproperty int defect\nproperty "
-                        "float shape_deviation\nproperty uchar red\nproperty uchar green\n"
-                        "property uchar blue\nelement face 2\n"
-                        "property list uchar int vertex_indices\n"),
-            std::string::npos)
+  EXPECT_NE(
+      header.find(
+          "property float x\nproperty float y\nproperty float z\nproperty float "
+          "deviation\nproperty uchar in_tolerance\nproperty int defect\nproperty "
+          "int region\nproperty float shape_deviation\nproperty uchar red\nproperty uchar green\n"
+          "property uchar blue\nelement face 2\n"
+          "property list uchar int vertex_indices\n"),
+      std::string::npos)
       << header;
-  constexpr std::size_t kVertexBytes = 28;
+  constexpr std::size_t kVertexBytes = 32;
   ASSERT_EQ(bytes.size(), body + 4 * kVertexBytes + 2 * 13);
   for (std::size_t i = 0; i < 4; ++i) {
     const std::size_t at = body + i * kVertexBytes;
@@ -104,13 +108,14 @@ TEST(DeviationPly, StoresEveryPropertyInTheDocumentedLayout) {
     }
     EXPECT_EQ(static_cast<int>(bytes[at + 16]), i == 0 ? 1 : 0) << "in_tolerance " << i;
     EXPECT_EQ(littleEndian<std::int32_t>(bytes, at + 17), map.defect[i]) << i;
-    const float shape = littleEndian<float>(bytes, at + 21);
+    EXPECT_EQ(littleEndian<std::int32_t>(bytes, at + 21), map.region[i]) << i;
+    const float shape = littleEndian<float>(bytes, at + 25);
     EXPECT_TRUE(std::isnan(map.shape_deviation[i]) ? std::isnan(shape)
                                                    : shape == map.shape_deviation[i])
         << i;
     const fi::Rgb colour = fi::deviationColour(map.deviation[i], tolerance02());
     for (std::size_t c = 0; c < 3; ++c) {
-      EXPECT_EQ(static_cast<std::uint8_t>(bytes[at + 25 + c]), colour[c]) << i << " " << c;
+      EXPECT_EQ(static_cast<std::uint8_t>(bytes[at + 29 + c]), colour[c]) << i << " " << c;
     }
   }
   EXPECT_EQ(static_cast<std::uint8_t>(bytes[body + 4 * kVertexBytes]), 3u);
@@ -123,12 +128,14 @@ TEST(DeviationPly, CloudWithoutLabelsHasNoFacesAndDefaultLabels) {
   fi::DeviationMap map = smallMap();
   map.shape_deviation.clear();
   map.defect.clear();
+  map.region.clear();
   ASSERT_TRUE(fi::saveDeviationPly(path, map, {}, tolerance02()).ok());
   const std::string bytes = fi::io_test::readBytes(path);
   EXPECT_EQ(bytes.find("element face"), std::string::npos);
   const std::size_t body = bytes.find("end_header\n") + 11;
   EXPECT_EQ(littleEndian<std::int32_t>(bytes, body + 17), -1);
-  EXPECT_TRUE(std::isnan(littleEndian<float>(bytes, body + 21)));
+  EXPECT_EQ(littleEndian<std::int32_t>(bytes, body + 21), -1);
+  EXPECT_TRUE(std::isnan(littleEndian<float>(bytes, body + 25)));
   EXPECT_EQ(fi::loadScan(path, 1.0).scan.points.size(), 4u);
 }
 
@@ -138,6 +145,10 @@ TEST(DeviationPly, RefusesInconsistentInputAndUnwritablePathsNamingTheFile) {
   EXPECT_EQ(bad_face.code, fi::StatusCode::kInvalidInput);
   EXPECT_NE(bad_face.message.find("face 0 uses vertex 4 of 4"), std::string::npos)
       << bad_face.message;
+  map.region.pop_back();
+  const fi::Status short_regions = fi::saveDeviationPly("/tmp/x.ply", map, {}, tolerance02());
+  EXPECT_NE(short_regions.message.find("3 region labels for 4 points"), std::string::npos)
+      << short_regions.message;
   map.deviation.pop_back();
   const fi::Status short_map = fi::saveDeviationPly("/tmp/x.ply", map, {}, tolerance02());
   EXPECT_NE(short_map.message.find("3 deviations for 4 points"), std::string::npos)

@@ -119,16 +119,18 @@ struct DeviationVertex {
   float x = 0, y = 0, z = 0, deviation = 0, shape_deviation = 0;
   int in_tolerance = 0;
   int defect = -1;
+  int region = -1;
   unsigned char rgb[3] = {0, 0, 0};
 };
 
-/// The vertices of a deviation PLY in the documented binary layout (28 bytes per vertex, right
+/// The vertices of a deviation PLY in the documented binary layout (32 bytes per vertex, right
 /// after the header); empty when the header is not the documented one.
 inline std::vector<DeviationVertex> readDeviationVertices(const std::string& bytes) {
   const std::string properties =
       "property float x\nproperty float y\nproperty float z\nproperty float deviation\n"
-      "property uchar in_tolerance\nproperty int defect\nproperty float shape_deviation\n"
-      "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+      "property uchar in_tolerance\nproperty int defect\nproperty int region\n"
+      "property float shape_deviation\nproperty uchar red\nproperty uchar green\nproperty uchar "
+      "blue\n";
   const auto end = bytes.find("end_header\n");
   const auto count_at = bytes.find("element vertex ");
   if (end == std::string::npos || count_at == std::string::npos ||
@@ -141,8 +143,8 @@ inline std::vector<DeviationVertex> readDeviationVertices(const std::string& byt
   const auto load = [&](std::size_t at, auto* value) {
     std::memcpy(value, bytes.data() + at, sizeof(*value));  // little-endian test hosts
   };
-  for (std::size_t i = 0; i < count && body + 28 * (i + 1) <= bytes.size(); ++i) {
-    const std::size_t at = body + 28 * i;
+  for (std::size_t i = 0; i < count && body + 32 * (i + 1) <= bytes.size(); ++i) {
+    const std::size_t at = body + 32 * i;
     DeviationVertex& v = vertices[i];
     load(at, &v.x);
     load(at + 4, &v.y);
@@ -150,8 +152,9 @@ inline std::vector<DeviationVertex> readDeviationVertices(const std::string& byt
     load(at + 12, &v.deviation);
     v.in_tolerance = static_cast<unsigned char>(bytes[at + 16]);
     load(at + 17, &v.defect);
-    load(at + 21, &v.shape_deviation);
-    std::memcpy(v.rgb, bytes.data() + at + 25, 3);
+    load(at + 21, &v.region);
+    load(at + 25, &v.shape_deviation);
+    std::memcpy(v.rgb, bytes.data() + at + 29, 3);
   }
   return vertices;
 }
