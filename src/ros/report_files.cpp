@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "deviation_ply.h"
+#include "report_csv.h"
 #include "report_html.h"
 #include "report_provenance.h"
 
@@ -54,6 +55,7 @@ ReportFilesResult writeReportFiles(const std::string& dir,
   provenance.model_key = model.descriptorKey();
   provenance.scan_hash = source.scan_hash;
   provenance.created = fi::utcTimestamp(std::time(nullptr));
+  provenance.part_id = source.part_id;
   const std::string html = base.string() + ".html";
   fi::Status status = fi::saveHtmlReport(html, result, config, provenance);
   if (!status.ok()) {
@@ -74,6 +76,13 @@ ReportFilesResult writeReportFiles(const std::string& dir,
     }
     written.files.push_back(ply);
   }
+  const std::string log = (std::filesystem::absolute(dir) / kInspectionLog).string();
+  status = fi::appendCsvSummary(log, result, config, provenance);
+  if (!status.ok()) {
+    written.error = status.message;
+    return written;
+  }
+  written.files.push_back(log);
   return written;
 }
 

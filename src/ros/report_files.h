@@ -24,7 +24,7 @@ struct ReportSource {
 
 /// Files written, or the reason one could not be.
 struct ReportFilesResult {
-  std::vector<std::string> files;  ///< absolute paths, HTML first
+  std::vector<std::string> files;  ///< absolute paths, HTML first, inspections.csv last
   std::string error;               ///< "" when every file was written
 };
 
@@ -33,8 +33,12 @@ struct ReportFilesResult {
 /// "SN-42_1234.500000000"; "inspection_<stamp>" without a part id.
 std::string reportBaseName(const std::string& part_id, const std_msgs::Header& header);
 
-/// @brief Writes `<dir>/<base>.html` and, when the scan was registered, `<base>_deviation.ply`.
-/// The directory is created if missing.
+/// The file in `~report_dir` that gets one line per inspection (report_csv.h's summary row).
+inline constexpr char kInspectionLog[] = "inspections.csv";
+
+/// @brief Writes `<dir>/<base>.html` and, when the scan was registered, `<base>_deviation.ply`,
+/// then appends the inspection's line to `<dir>/inspections.csv` (kInspectionLog). The directory
+/// is created if missing.
 ReportFilesResult writeReportFiles(const std::string& dir,
                                    const freeform_inspection::InspectionResult& result,
                                    const freeform_inspection::PipelineConfig& config,

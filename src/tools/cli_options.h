@@ -20,6 +20,7 @@ struct CliOptions {
   std::string report_path;          ///< --report OUT.json
   std::string deviation_path;       ///< --deviation OUT.ply
   std::string html_path;            ///< --html OUT.html
+  std::string csv_directory;        ///< --csv DIR (report_csv.h)
   std::string model_cache;          ///< --model-cache DIR (empty: the default directory)
   bool no_model_cache = false;      ///< --no-model-cache
   /// --initial-pose: the scan → CAD transform to refine instead of searching, row-major, its

@@ -13,6 +13,7 @@
 
 #include "cli_options.h"
 #include "deviation_ply.h"
+#include "report_csv.h"
 #include "report_html.h"
 #include "report_json.h"
 #include "report_provenance.h"
@@ -97,8 +98,8 @@ fi::ReportProvenance provenance(const fi::CliOptions& options,
   return p;
 }
 
-// Writes --deviation (when there is a map) and --html (always: a failed inspection is on record
-// too); returns the first failure.
+// Writes --deviation (when there is a map), --html and --csv (always: a failed inspection is on
+// record too); returns the first failure.
 fi::Status writeOutputs(const fi::CliOptions& options,
                         const fi::InspectionResult& result,
                         const fi::PipelineConfig& config,
@@ -114,9 +115,18 @@ fi::Status writeOutputs(const fi::CliOptions& options,
       return written;
     }
   }
+  if (options.html_path.empty() && options.csv_directory.empty()) {
+    return fi::Status::success();
+  }
+  const fi::ReportProvenance record = provenance(options, model, started);
   if (!options.html_path.empty()) {
-    return fi::saveHtmlReport(
-        options.html_path, result, config, provenance(options, model, started));
+    const fi::Status written = fi::saveHtmlReport(options.html_path, result, config, record);
+    if (!written.ok()) {
+      return written;
+    }
+  }
+  if (!options.csv_directory.empty()) {
+    return fi::saveCsvTables(options.csv_directory, result, config, record);
   }
   return fi::Status::success();
 }

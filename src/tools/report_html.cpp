@@ -51,6 +51,7 @@ std::string verdictBanner(const InspectionResult& result) {
 
 std::string provenanceSection(const ReportProvenance& p, const std::string& config_hash) {
   return "<h2>Part and traceability</h2>\n<table>\n" +
+         (p.part_id.empty() ? "" : tableRow("Part id", {escapeHtml(p.part_id)})) +
          tableRow("Part (CAD file)", {escapeHtml(p.cad_file)}) +
          tableRow("Scan file", {escapeHtml(p.scan_file)}) +
          tableRow("Model id", {escapeHtml(p.model_id)}) +

@@ -20,6 +20,7 @@ struct ReportProvenance {
   std::string scan_hash;    ///< fileHash() of the scan file
   std::string config_hash;  ///< configHash() of the effective configuration
   std::string created;      ///< UTC time of the run, ISO 8601 (utcTimestamp())
+  std::string part_id;      ///< the part's serial or id where the caller names one
 };
 
 /// @brief FNV-1a (content_hash.h) of a file's bytes as 16 hex digits; "unreadable" when the file

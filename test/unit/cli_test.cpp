@@ -3,6 +3,7 @@
 //
 // The CLI contract of design.md §5: JSON on stdout, exit 0 when it ran, exit 2 with one line on
 // stderr for bad input or usage.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "report_test_util.h"
@@ -336,8 +338,10 @@ TEST(Cli, SampleRunWritesTheDeviationPlyAndTheHtmlReport) {
   const std::string html_path = temp("report.html");
   std::remove(ply.c_str());
   std::remove(html_path.c_str());
-  const CliRun run = runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan +
-                            " --tolerance 0.0002 --deviation " + ply + " --html " + html_path);
+  const std::string csv = temp("csv");
+  const CliRun run =
+      runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan +
+             " --tolerance 0.0002 --deviation " + ply + " --html " + html_path + " --csv " + csv);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
   ASSERT_EQ(json["status"], "ok") << json["message"];
@@ -373,11 +377,33 @@ TEST(Cli, SampleRunWritesTheDeviationPlyAndTheHtmlReport) {
     EXPECT_GT(png.width, 100);
     EXPECT_GT(png.height, 100);
   }
+
+  // The CSV tables: the summary's numbers are the JSON's in millimetres, one histogram row per
+  // bin, one defect row per defect (a header alone when there are none).
+  const auto summary = rt::csvRows(slurp(csv + "/summary.csv"));
+  ASSERT_EQ(summary.size(), 1u);
+  const auto column = [&](const std::string& name) { return summary[0].at(name); };
+  EXPECT_EQ(column("verdict"), json["verdict"]);
+  EXPECT_EQ(column("scan_file"), kScan);
+  EXPECT_EQ(column("points_evaluated"), std::to_string(deviation["evaluated"].get<std::size_t>()));
+  EXPECT_NEAR(std::stod(column("p95_mm")), 1e3 * deviation["p95"].get<double>(), 1e-4);
+  EXPECT_NEAR(std::stod(column("upper_mm")), 0.2, 1e-9);
+  const std::string histogram = slurp(csv + "/histogram.csv");
+  EXPECT_EQ(static_cast<std::size_t>(std::count(histogram.begin(), histogram.end(), '\n')),
+            deviation["histogram"]["counts"].size() + 1);
+  const std::string defects = slurp(csv + "/defects.csv");
+  EXPECT_EQ(static_cast<std::size_t>(std::count(defects.begin(), defects.end(), '\n')),
+            json["defects"].size() + 1);
 }
 
 TEST(Cli, UnwritableOutputFileExitsTwoNamingIt) {
-  for (const std::string flag : {"--html", "--deviation"}) {
-    const std::string path = "/nonexistent_dir_ffi/out.file";
+  // --csv makes its directory, so it is given one under a plain file, where none can be made.
+  const std::string plain = temp("plain_file");
+  std::ofstream(plain) << "x";
+  for (const auto& [flag, path] : std::vector<std::pair<std::string, std::string>>{
+           {"--html", "/nonexistent_dir_ffi/out.file"},
+           {"--deviation", "/nonexistent_dir_ffi/out.file"},
+           {"--csv", plain + "/csv"}}) {
     const CliRun run =
         runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan + " " + flag + " " + path);
     EXPECT_EQ(run.exit_code, 2) << flag;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "report_test_util.h"
 #include <gtest/gtest.h>
 
 #include "freeform_inspection/model.h"
@@ -73,7 +74,7 @@ TEST(ReportFiles, WritesTheHtmlOfAnUnregisteredScanAndNoDeviationFile) {
                                                      source,
                                                      stampedHeader());
   EXPECT_TRUE(written.error.empty()) << written.error;
-  ASSERT_EQ(written.files.size(), 1u);
+  ASSERT_EQ(written.files.size(), 2u);
   const fs::path html(written.files.front());
   EXPECT_TRUE(html.is_absolute());
   EXPECT_EQ(html.parent_path(), fs::absolute(dir)) << "created, and nothing outside it";
@@ -81,6 +82,43 @@ TEST(ReportFiles, WritesTheHtmlOfAnUnregisteredScanAndNoDeviationFile) {
   std::ifstream file(html);
   const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("0123456789abcdef"), std::string::npos) << "the scan hash is on record";
+  EXPECT_NE(text.find("<td>../SN-7</td>"), std::string::npos) << "the part id as given";
+
+  // One line per inspection in inspections.csv, under one header.
+  const fs::path log(written.files.back());
+  EXPECT_EQ(log, fs::absolute(dir) / "inspections.csv");
+  result.verdict_reason = "second, with a comma";
+  ASSERT_TRUE(writeReportFiles(dir.string(),
+                               result,
+                               freeform_inspection::PipelineConfig{},
+                               *loaded.model,
+                               source,
+                               stampedHeader())
+                  .error.empty());
+  std::ifstream csv(log);
+  const std::string lines((std::istreambuf_iterator<char>(csv)), std::istreambuf_iterator<char>());
+  const auto rows = freeform_inspection::report_test::csvRows(lines);
+  ASSERT_EQ(rows.size(), 2u) << lines;
+  EXPECT_EQ(rows[0].at("part_id"), "../SN-7");
+  EXPECT_EQ(rows[0].at("verdict"), "NOT_EVALUATED");
+  EXPECT_EQ(rows[0].at("scan_hash"), "0123456789abcdef");
+  EXPECT_EQ(rows[1].at("verdict_reason"), "second, with a comma");
+
+  // Another version's header: nothing is appended, and the error names the file.
+  std::ofstream(log) << "created,verdict\n";
+  const ReportFilesResult refused = writeReportFiles(dir.string(),
+                                                     result,
+                                                     freeform_inspection::PipelineConfig{},
+                                                     *loaded.model,
+                                                     source,
+                                                     stampedHeader());
+  EXPECT_NE(refused.error.find("cannot append to CSV summary '" + log.string() + "'"),
+            std::string::npos)
+      << refused.error;
+  std::ifstream old_log(log);
+  EXPECT_EQ(
+      std::string((std::istreambuf_iterator<char>(old_log)), std::istreambuf_iterator<char>()),
+      "created,verdict\n");
   fs::remove_all(dir.parent_path());
 }
 

@@ -3,11 +3,14 @@
 //
 // The CLI's report outputs on hand-built results: the deviation PLY (read back by the library's
 // PLY reader and byte by byte), the PNG encoder, the point-splat renderer, the traceability
-// hashes and the HTML report.
+// hashes, the HTML report and the CSV tables.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -15,6 +18,7 @@
 #include "deviation_ply.h"
 #include "io_test_util.h"
 #include "png_writer.h"
+#include "report_csv.h"
 #include "report_html.h"
 #include "report_provenance.h"
 #include "report_test_util.h"
@@ -436,6 +440,120 @@ TEST(HtmlReport, UnwritablePathIsAStatusNamingTheFile) {
       "/nonexistent_dir_ffi/r.html", fi::InspectionResult(), fi::PipelineConfig(), provenance());
   EXPECT_EQ(status.code, fi::StatusCode::kInvalidInput);
   EXPECT_NE(status.message.find("cannot write HTML report '/nonexistent_dir_ffi/r.html': "),
+            std::string::npos)
+      << status.message;
+}
+
+// Table `file` of the tables as {column name: value} per row.
+std::vector<std::map<std::string, std::string>> csvRows(const std::vector<fi::CsvTable>& tables,
+                                                        const std::string& file) {
+  for (const fi::CsvTable& table : tables) {
+    if (table.file == file) {
+      EXPECT_EQ(table.text.back(), '\n') << file;
+      return rt::csvRows(table.text);
+    }
+  }
+  ADD_FAILURE() << "no table " << file;
+  return {};
+}
+
+TEST(CsvTables, HoldTheReportInMillimetresOneRowPerItem) {
+  fi::PipelineConfig config;
+  config.tolerance = tolerance02();
+  fi::InspectionResult result = failedPart();
+  fi::RegionResult root;
+  root.name = "root \"A\", left";
+  root.tolerance = tolerance02();
+  root.verdict = fi::Verdict::kFail;
+  root.verdict_reason = "1 defect region";
+  root.deviation.evaluated = 200;
+  root.deviation.max = 0.000812;
+  root.deviation.coverage = 0.5;
+  root.defects = 1;
+  result.regions = {root};
+  result.defects.front().region = 0;
+  const std::vector<fi::CsvTable> tables = fi::renderCsvTables(result, config, provenance());
+  ASSERT_EQ(tables.size(), 4u);
+
+  const auto summary = csvRows(tables, "summary.csv");
+  ASSERT_EQ(summary.size(), 1u);
+  EXPECT_EQ(summary[0].at("created"), "2026-05-04T10:22:31Z");
+  EXPECT_EQ(summary[0].at("scan_file"), "scans/SN-42.ply");
+  EXPECT_EQ(summary[0].at("config_hash"), fi::configHash(config));
+  EXPECT_EQ(summary[0].at("status"), "ok");
+  EXPECT_EQ(summary[0].at("verdict"), "FAIL");
+  EXPECT_EQ(summary[0].at("verdict_reason"), result.verdict_reason) << "a comma, quoted";
+  EXPECT_EQ(summary[0].at("rmse_mm"), "0.0217");
+  EXPECT_EQ(summary[0].at("lower_mm"), "-0.2000");
+  EXPECT_EQ(summary[0].at("max_mm"), "0.8120");
+  EXPECT_EQ(summary[0].at("min_mm"), "-0.7890");
+  EXPECT_EQ(summary[0].at("points_evaluated"), "1600");
+  EXPECT_EQ(summary[0].at("in_tolerance_fraction"), "0.973100");
+  EXPECT_EQ(summary[0].at("defects"), "1");
+
+  const auto defects = csvRows(tables, "defects.csv");
+  ASSERT_EQ(defects.size(), 1u);
+  EXPECT_EQ(defects[0].at("region"), root.name) << "quotes and a comma, quoted";
+  EXPECT_EQ(defects[0].at("kind"), "excess");
+  EXPECT_EQ(defects[0].at("points"), "37");
+  EXPECT_EQ(defects[0].at("area_mm2"), "4.2000");
+  EXPECT_EQ(defects[0].at("peak_mm"), "0.8120");
+  EXPECT_EQ(defects[0].at("centroid_x_mm"), "12.5000");
+
+  const auto histogram = csvRows(tables, "histogram.csv");
+  ASSERT_EQ(histogram.size(), 4u);
+  EXPECT_EQ(histogram[1].at("from_mm"), "-0.4000");
+  EXPECT_EQ(histogram[1].at("to_mm"), "0.0000");
+  EXPECT_EQ(histogram[1].at("points"), "700");
+
+  const auto regions = csvRows(tables, "regions.csv");
+  ASSERT_EQ(regions.size(), 1u);
+  EXPECT_EQ(regions[0].at("name"), root.name);
+  EXPECT_EQ(regions[0].at("evaluated"), "true");
+  EXPECT_EQ(regions[0].at("verdict"), "FAIL");
+  EXPECT_EQ(regions[0].at("coverage"), "0.500000");
+  EXPECT_EQ(regions[0].at("defects"), "1");
+}
+
+TEST(CsvTables, NothingMeasuredLeavesTheNumbersEmptyAndTheHeadersInPlace) {
+  fi::InspectionResult result;
+  result.status = fi::Status::failure(fi::StatusCode::kRegistrationFailed, "no pose explains it");
+  result.rmse = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<fi::CsvTable> tables =
+      fi::renderCsvTables(result, fi::PipelineConfig(), provenance());
+  const auto summary = csvRows(tables, "summary.csv");
+  ASSERT_EQ(summary.size(), 1u);
+  EXPECT_EQ(summary[0].at("status"), "failed");
+  EXPECT_EQ(summary[0].at("verdict"), "NOT_EVALUATED");
+  EXPECT_EQ(summary[0].at("rmse_mm"), "");
+  EXPECT_EQ(summary[0].at("mean_mm"), "") << "not a perfect part's zero";
+  EXPECT_EQ(summary[0].at("coverage"), "");
+  EXPECT_EQ(summary[0].at("points_evaluated"), "0");
+  for (const char* file : {"defects.csv", "histogram.csv", "regions.csv"}) {
+    EXPECT_TRUE(csvRows(tables, file).empty()) << file;
+  }
+  for (const fi::CsvTable& table : tables) {
+    EXPECT_EQ(std::count(table.text.begin(), table.text.end(), '\n'),
+              table.file == "summary.csv" ? 2 : 1)
+        << table.file;
+  }
+}
+
+TEST(CsvTables, WrittenIntoADirectoryMadeForThemOrAStatusNamingIt) {
+  fi::io_test::TempDir dir;
+  const std::string target = dir.file("csv/part_1");
+  ASSERT_TRUE(fi::saveCsvTables(target, failedPart(), fi::PipelineConfig(), provenance()).ok());
+  for (const fi::CsvTable& table :
+       fi::renderCsvTables(failedPart(), fi::PipelineConfig(), provenance())) {
+    EXPECT_EQ(fi::io_test::readBytes(target + "/" + table.file), table.text) << table.file;
+  }
+  // Under a plain file no directory can be made.
+  const std::string file = dir.file("plain");
+  std::ofstream(file) << "x";
+  const fi::Status status =
+      fi::saveCsvTables(file + "/csv", failedPart(), fi::PipelineConfig(), provenance());
+  EXPECT_EQ(status.code, fi::StatusCode::kInvalidInput);
+  EXPECT_NE(status.message.find("cannot create CSV directory '" + file + "/csv'"),
             std::string::npos)
       << status.message;
 }

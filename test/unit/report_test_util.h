@@ -4,10 +4,12 @@
 
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <zlib.h>
 
 /// Independent readers for the report outputs (base64, PNG), sharing no code with the writers,
@@ -157,6 +159,57 @@ inline std::vector<DeviationVertex> readDeviationVertices(const std::string& byt
     std::memcpy(v.rgb, bytes.data() + at + 29, 3);
   }
   return vertices;
+}
+
+/// RFC 4180 records of a CSV text: fields split at commas outside quotes, "" inside quotes.
+inline std::vector<std::vector<std::string>> parseCsv(const std::string& text) {
+  std::vector<std::vector<std::string>> records;
+  std::vector<std::string> record;
+  std::string value;
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        value += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        value += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      record.push_back(value);
+      value.clear();
+    } else if (c == '\n') {
+      record.push_back(value);
+      records.push_back(record);
+      record.clear();
+      value.clear();
+    } else {
+      value += c;
+    }
+  }
+  return records;
+}
+
+/// The rows of a CSV text with a header line as {column name: value}; fails the test on a row
+/// whose length is not the header's.
+inline std::vector<std::map<std::string, std::string>> csvRows(const std::string& text) {
+  const auto records = parseCsv(text);
+  EXPECT_FALSE(records.empty()) << "no header";
+  std::vector<std::map<std::string, std::string>> rows;
+  for (std::size_t r = 1; r < records.size(); ++r) {
+    EXPECT_EQ(records[r].size(), records[0].size()) << "row " << r;
+    std::map<std::string, std::string> row;
+    for (std::size_t c = 0; c < records[0].size() && c < records[r].size(); ++c) {
+      row[records[0][c]] = records[r][c];
+    }
+    rows.push_back(row);
+  }
+  return rows;
 }
 
 }  // namespace freeform_inspection::report_test
