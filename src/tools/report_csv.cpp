@@ -4,13 +4,13 @@
 
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <system_error>
 
 #include "file_output.h"
+#include "html_util.h"
 
 namespace freeform_inspection {
 namespace {
@@ -27,15 +27,10 @@ std::string field(const std::string& text) {
   return quoted + "\"";
 }
 
-// A number with `decimals` digits after the point (always '.', whatever the locale), empty when
-// it is unknown.
+// A number with `decimals` digits after the point (html_util.h's number(): '.', whatever the
+// locale), empty when it is unknown.
 std::string fixed(double value, int decimals) {
-  if (!std::isfinite(value)) {
-    return "";
-  }
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-  return text;
+  return std::isfinite(value) ? number(value, decimals) : "";
 }
 
 // Lengths [m] in millimetres to 0.1 µm, areas [m²] in mm², shares to 1e-6.
