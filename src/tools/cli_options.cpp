@@ -59,6 +59,7 @@ std::string apply(const std::string& flag, const std::string& value, CliOptions*
                                                      {"--deviation", &options->deviation_path},
                                                      {"--html", &options->html_path},
                                                      {"--csv", &options->csv_directory},
+                                                     {"--part-id", &options->part_id},
                                                      {"--model-cache", &options->model_cache}};
   if (const auto path = paths.find(flag); path != paths.end()) {
     *path->second = value;
@@ -133,7 +134,7 @@ std::string cliUsage() {
          "                        [--cad-scale S] [--scan-scale S] [--tolerance T]\n"
          "                        [--config FILE.yaml] [--regions FILE.yaml]\n"
          "                        [--report OUT.json] [--deviation OUT.ply]\n"
-         "                        [--html OUT.html] [--csv DIR]\n"
+         "                        [--html OUT.html] [--csv DIR] [--part-id ID]\n"
          "                        [--model-cache DIR | --no-model-cache]\n"
          "                        [--initial-pose \"R11 R12 R13 TX R21 ... TZ\" |\n"
          "                         --fixed-pose \"R11 R12 R13 TX R21 ... TZ\"]\n"
@@ -145,7 +146,8 @@ std::string cliUsage() {
          "--deviation writes the coloured deviation map (PLY, CAD frame) when the scan was\n"
          "registered; --html writes a self-contained report for people; --csv writes\n"
          "summary.csv, defects.csv, histogram.csv and regions.csv into DIR, lengths in mm, for\n"
-         "spreadsheets and SPC tools (docs/reports.md).\n"
+         "spreadsheets and SPC tools (docs/reports.md); --part-id names the part (a serial) in\n"
+         "the JSON, the HTML and the CSV summary.\n"
          "Lengths are metres after scaling: --cad-scale 0.001 reads a CAD file in millimetres,\n"
          "--tolerance 0.0002 is a band of +-0.2 mm.\n"
          "--regions names regions of the CAD (boxes in its frame, metres) with a tolerance of\n"

@@ -21,6 +21,7 @@ struct CliOptions {
   std::string deviation_path;       ///< --deviation OUT.ply
   std::string html_path;            ///< --html OUT.html
   std::string csv_directory;        ///< --csv DIR (report_csv.h)
+  std::string part_id;              ///< --part-id ID: the part's serial, on every report
   std::string model_cache;          ///< --model-cache DIR (empty: the default directory)
   bool no_model_cache = false;      ///< --no-model-cache
   /// --initial-pose: the scan → CAD transform to refine instead of searching, row-major, its

@@ -95,6 +95,7 @@ fi::ReportProvenance provenance(const fi::CliOptions& options,
   p.model_key = model.descriptorKey();
   p.scan_hash = fi::fileHash(options.scan_path);
   p.created = fi::utcTimestamp(started);
+  p.part_id = options.part_id;
   return p;
 }
 
@@ -183,7 +184,9 @@ int run(const fi::CliOptions& options) {
   noteSkippedOutputs(options, &result);
   result.timings.insert(result.timings.begin(), {"load", load_seconds});
   result.timings.back().seconds = secondsSince(start);  // "total" covers loading too
-  if (!emit(options, fi::toJson(result))) {
+  nlohmann::ordered_json report = fi::toJson(result);
+  report["part_id"] = options.part_id;
+  if (!emit(options, report)) {
     return refuse("cannot write report '" + options.report_path + "'");
   }
   const fi::Status written = writeOutputs(options, result, config.config, *model.model, started);

@@ -339,13 +339,14 @@ TEST(Cli, SampleRunWritesTheDeviationPlyAndTheHtmlReport) {
   std::remove(ply.c_str());
   std::remove(html_path.c_str());
   const std::string csv = temp("csv");
-  const CliRun run =
-      runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan +
-             " --tolerance 0.0002 --deviation " + ply + " --html " + html_path + " --csv " + csv);
+  const CliRun run = runCli("--cad " + kBlade + " --cad-scale 0.001 --scan " + kScan +
+                            " --tolerance 0.0002 --deviation " + ply + " --html " + html_path +
+                            " --csv " + csv + " --part-id 'SN 42, left'");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
   ASSERT_EQ(json["status"], "ok") << json["message"];
   EXPECT_TRUE(json.contains("verdict_reason"));
+  EXPECT_EQ(json["part_id"], "SN 42, left");
   const auto& deviation = json["deviation"];
   EXPECT_EQ(deviation["histogram"]["edges"].size(), deviation["histogram"]["counts"].size() + 1);
 
@@ -368,6 +369,7 @@ TEST(Cli, SampleRunWritesTheDeviationPlyAndTheHtmlReport) {
   const std::string html = slurp(html_path);
   EXPECT_NE(html.find(">" + json["verdict"].get<std::string>() + "<"), std::string::npos);
   EXPECT_NE(html.find(kScan), std::string::npos);
+  EXPECT_NE(html.find("<td>SN 42, left</td>"), std::string::npos);
   EXPECT_NE(html.find("<svg class=\"histogram\""), std::string::npos);
   const std::vector<std::string> pngs = rt::dataUris(html, "image/png");
   ASSERT_EQ(pngs.size(), 3u);
@@ -385,6 +387,7 @@ TEST(Cli, SampleRunWritesTheDeviationPlyAndTheHtmlReport) {
   const auto column = [&](const std::string& name) { return summary[0].at(name); };
   EXPECT_EQ(column("verdict"), json["verdict"]);
   EXPECT_EQ(column("scan_file"), kScan);
+  EXPECT_EQ(column("part_id"), "SN 42, left");
   EXPECT_EQ(column("points_evaluated"), std::to_string(deviation["evaluated"].get<std::size_t>()));
   EXPECT_NEAR(std::stod(column("p95_mm")), 1e3 * deviation["p95"].get<double>(), 1e-4);
   EXPECT_NEAR(std::stod(column("upper_mm")), 0.2, 1e-9);
