@@ -4,28 +4,31 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <type_traits>
 
 /// @file content_hash.h
-/// A 64-bit FNV-1a hash for traceability keys (model, scan file, configuration). Not
-/// cryptographic: it tells "same content" from "changed content", it does not resist tampering.
+/// A 64-bit XXH3 hash (the xxHash library) for traceability keys (model, scan file,
+/// configuration) and the model cache's checksum. Not cryptographic: it tells "same content"
+/// from "changed content", it does not resist tampering.
+
+struct XXH3_state_s;
 
 namespace freeform_inspection {
 
-/// Incremental 64-bit FNV-1a over bytes. Feeding the same bytes in the same order gives the same
-/// value on every run and platform of the same byte order.
+/// Incremental 64-bit XXH3 (seed 0) over bytes: the value `xxhsum -H3` prints for the same
+/// bytes, whether they are added at once or in pieces, on every run and platform.
 class ContentHash {
  public:
+  ContentHash();
+  ~ContentHash();
+  ContentHash(const ContentHash&) = delete;
+  ContentHash& operator=(const ContentHash&) = delete;
+
   /// @brief Adds `size` bytes starting at `data`.
-  void addBytes(const void* data, std::size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) {
-      hash_ = (hash_ ^ bytes[i]) * kPrime;
-    }
-  }
+  void addBytes(const void* data, std::size_t size);
 
   /// @brief Adds the object representation of a trivially copyable value (numbers, enums).
   template <typename T>
@@ -38,19 +41,16 @@ class ContentHash {
   void addText(std::string_view text) { addBytes(text.data(), text.size()); }
 
   /// @return the hash of everything added so far.
-  std::uint64_t value() const { return hash_; }
+  std::uint64_t value() const;
 
   /// @return value() as 16 lower-case hex digits.
-  std::string hex() const {
-    char text[17];
-    std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash_));
-    return text;
-  }
+  std::string hex() const;
 
  private:
-  static constexpr std::uint64_t kOffsetBasis = 14695981039346656037ull;  // FNV-1a 64-bit
-  static constexpr std::uint64_t kPrime = 1099511628211ull;
-  std::uint64_t hash_ = kOffsetBasis;
+  struct StateDeleter {
+    void operator()(XXH3_state_s* state) const;
+  };
+  std::unique_ptr<XXH3_state_s, StateDeleter> state_;
 };
 
 }  // namespace freeform_inspection

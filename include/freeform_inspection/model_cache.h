@@ -40,7 +40,9 @@ struct ModelCacheEntry {
   std::string descriptor_key;                   ///< Model::descriptorKey()
   DescriptorResult descriptors;
   std::vector<Symmetry> symmetries;
-  ChordError chord_error;  ///< Model::chordError()
+  ChordError chord_error;                             ///< Model::chordError()
+  double thickness = 0.0;                             ///< Model::thickness()
+  std::vector<Eigen::Isometry3d> normal_frame_turns;  ///< Model::normalFrameTurns()
 };
 
 /// @brief The key of a CAD file's entry: a hash of its bytes, the unit scale it is loaded with

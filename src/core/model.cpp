@@ -9,32 +9,14 @@
 #include "io/file_util.h"
 #include "io/mesh_bytes.h"
 
+#include "freeform_inspection/content_hash.h"
 #include "freeform_inspection/io.h"
 
 namespace freeform_inspection {
 namespace {
 
-// FNV-1a over the bytes of the mesh and the settings that shape the descriptors.
-class Fnv1a {
- public:
-  template <typename T>
-  void add(const T& value) {
-    const auto* bytes = reinterpret_cast<const unsigned char*>(&value);
-    for (std::size_t i = 0; i < sizeof(T); ++i) {
-      hash_ = (hash_ ^ bytes[i]) * 1099511628211ull;
-    }
-  }
-  std::string hex() const {
-    char text[17];
-    std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash_));
-    return text;
-  }
-
- private:
-  std::uint64_t hash_ = 1469598103934665603ull;
-};
-
-void addSettings(const DescriptorConfig& config, Fnv1a* hash) {
+// The settings that shape the descriptors, for the cache keys.
+void addSettings(const DescriptorConfig& config, ContentHash* hash) {
   hash->add(config.scales);
   hash->add(config.max_radius_ratio);
   hash->add(config.cell_ratio);
@@ -51,17 +33,13 @@ void addSettings(const DescriptorConfig& config, Fnv1a* hash) {
 }
 
 std::string descriptorCacheKey(const TriangleMesh& mesh, const DescriptorConfig& config) {
-  Fnv1a hash;
-  for (const auto& v : mesh.vertices) {
-    hash.add(v.x());
-    hash.add(v.y());
-    hash.add(v.z());
-  }
-  for (const auto& f : mesh.faces) {
-    hash.add(f[0]);
-    hash.add(f[1]);
-    hash.add(f[2]);
-  }
+  // The coordinates and corner indices as they lie in memory: x, y, z of each vertex, then the
+  // three corners of each face.
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "packed vertices");
+  static_assert(sizeof(Eigen::Vector3i) == 3 * sizeof(int), "packed faces");
+  ContentHash hash;
+  hash.addBytes(mesh.vertices.data(), mesh.vertices.size() * sizeof(Eigen::Vector3d));
+  hash.addBytes(mesh.faces.data(), mesh.faces.size() * sizeof(Eigen::Vector3i));
   addSettings(config, &hash);
   return hash.hex();
 }
@@ -127,7 +105,7 @@ Model::Model(ModelCacheEntry entry,
     : orientation_(entry.orientation),
       mesh_(std::move(entry.mesh)),
       bounds_(computeBoundingBox(mesh_.vertices)),
-      thickness_(principalThickness(mesh_)),
+      thickness_(entry.thickness),
       topology_(entry.topology),
       id_(std::move(id)),
       source_(std::move(source)),
@@ -136,7 +114,7 @@ Model::Model(ModelCacheEntry entry,
       descriptor_config_(descriptor_config),
       query_(std::make_unique<MeshQuery>(mesh_)),
       symmetries_(std::move(entry.symmetries)),
-      normal_frame_turns_(freeform_inspection::normalFrameTurns(descriptors_.graph)),
+      normal_frame_turns_(std::move(entry.normal_frame_turns)),
       face_border_edges_(std::move(entry.face_border_edges)),
       chord_error_(std::move(entry.chord_error)),
       from_cache_(true) {}
@@ -152,11 +130,13 @@ ModelCacheEntry Model::cacheEntry(std::vector<std::string> load_warnings) const 
   entry.descriptors = descriptors_;
   entry.symmetries = symmetries_;
   entry.chord_error = chord_error_;
+  entry.thickness = thickness_;
+  entry.normal_frame_turns = normal_frame_turns_;
   return entry;
 }
 
 std::string descriptorSettingsKey(const DescriptorConfig& config) {
-  Fnv1a hash;
+  ContentHash hash;
   addSettings(config, &hash);
   return hash.hex();
 }

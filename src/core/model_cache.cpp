@@ -27,7 +27,7 @@ namespace {
 
 constexpr char kMagic[8] = {'F', 'I', 'M', 'O', 'D', 'E', 'L', 'C'};
 // Bumped when the layout below changes; the package version covers changes of what is computed.
-constexpr std::uint32_t kFormat = 4;
+constexpr std::uint32_t kFormat = 5;
 
 // Appends values to a byte buffer in the machine's own representation (the cache never leaves
 // the machine that wrote it, and the version check refuses another build's file).
@@ -411,6 +411,13 @@ Status writeModelCache(const std::string& directory,
     }
     payload.put(symmetry.score);
   }
+  payload.put(entry.thickness);
+  payload.put<std::uint64_t>(entry.normal_frame_turns.size());
+  for (const Eigen::Isometry3d& turn : entry.normal_frame_turns) {
+    for (int i = 0; i < 16; ++i) {
+      payload.put(turn.matrix().data()[i]);
+    }
+  }
   ContentHash checksum;
   checksum.addBytes(payload.bytes().data(), payload.bytes().size());
   Writer header;
@@ -503,6 +510,15 @@ ModelCacheRead readModelCache(const std::string& directory, const std::string& k
     }
     symmetry.score = payload.get<double>();
     entry.symmetries.push_back(symmetry);
+  }
+  entry.thickness = payload.get<double>();
+  const auto turns = payload.get<std::uint64_t>();
+  for (std::uint64_t t = 0; t < turns && payload.ok(); ++t) {
+    Eigen::Isometry3d turn;
+    for (int i = 0; i < 16; ++i) {
+      turn.matrix().data()[i] = payload.get<double>();
+    }
+    entry.normal_frame_turns.push_back(turn);
   }
   if (!payload.ok() || !payload.atEnd() || !consistent(entry.descriptors) ||
       !consistent(entry.mesh, entry.face_border_edges) ||

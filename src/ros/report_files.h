@@ -18,7 +18,7 @@ namespace freeform_inspection_ros {
 struct ReportSource {
   std::string model_path;  ///< CAD file the model was loaded from
   std::string scan_name;   ///< e.g. "Inspect request" or "topic /scan"
-  std::string scan_hash;   ///< FNV-1a of the scan message's point data
+  std::string scan_hash;   ///< XXH3-64 of the scan message's point data
   std::string part_id;     ///< from the request; may be empty
 };
 

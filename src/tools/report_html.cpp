@@ -58,8 +58,8 @@ std::string provenanceSection(const ReportProvenance& p, const std::string& conf
          tableRow("Inspected (UTC)", {escapeHtml(p.created)}) +
          tableRow("Model key (mesh + descriptor settings)",
                   {"<code>" + escapeHtml(p.model_key) + "</code>"}) +
-         tableRow("Scan file hash (FNV-1a 64)", {"<code>" + escapeHtml(p.scan_hash) + "</code>"}) +
-         tableRow("Configuration hash (FNV-1a 64)", {"<code>" + config_hash + "</code>"}) +
+         tableRow("Scan file hash (XXH3-64)", {"<code>" + escapeHtml(p.scan_hash) + "</code>"}) +
+         tableRow("Configuration hash (XXH3-64)", {"<code>" + config_hash + "</code>"}) +
          "</table>\n";
 }
 

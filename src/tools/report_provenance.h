@@ -23,7 +23,7 @@ struct ReportProvenance {
   std::string part_id;      ///< the part's serial or id where the caller names one
 };
 
-/// @brief FNV-1a (content_hash.h) of a file's bytes as 16 hex digits; "unreadable" when the file
+/// @brief XXH3-64 (content_hash.h) of a file's bytes as 16 hex digits; "unreadable" when the file
 /// cannot be read.
 std::string fileHash(const std::string& path);
 
@@ -31,7 +31,7 @@ std::string fileHash(const std::string& path);
 /// doubles as the shortest text that reads back to the same value, so the text pins it.
 std::vector<std::pair<std::string, std::string>> configEntries(const PipelineConfig& config);
 
-/// @brief FNV-1a over the "key=value\n" lines of configEntries(): equal for equal settings
+/// @brief XXH3-64 over the "key=value\n" lines of configEntries(): equal for equal settings
 /// however they were given (defaults, YAML, flags).
 std::string configHash(const PipelineConfig& config);
 

@@ -88,6 +88,13 @@ void expectSameMesh(const Model& a, const Model& b) {
   EXPECT_EQ(a.bounds().min, b.bounds().min);
   EXPECT_EQ(a.bounds().max, b.bounds().max);
   EXPECT_EQ(a.descriptorKey(), b.descriptorKey());
+  EXPECT_EQ(a.thickness(), b.thickness());
+  EXPECT_GT(a.thickness(), 0.0);
+  ASSERT_EQ(a.normalFrameTurns().size(), b.normalFrameTurns().size());
+  EXPECT_FALSE(a.normalFrameTurns().empty());
+  for (std::size_t t = 0; t < a.normalFrameTurns().size(); ++t) {
+    EXPECT_EQ(a.normalFrameTurns()[t].matrix(), b.normalFrameTurns()[t].matrix());
+  }
 }
 
 const Model& blade() {

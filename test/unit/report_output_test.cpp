@@ -189,16 +189,35 @@ TEST(Base64, EncodesTheRfc4648TestVectors) {
   EXPECT_EQ(fi::dataUri("image/png", "\xff\xfe"), "data:image/png;base64,//4=");
 }
 
-TEST(ContentHash, MatchesTheFnv1aReferenceValues) {
-  fi::ContentHash empty;
-  EXPECT_EQ(empty.hex(), "cbf29ce484222325");
+TEST(ContentHash, MatchesXxh3ReferenceValues) {
+  // The values `xxhsum -H3` (xxHash 0.8.1) prints for the same bytes.
+  const fi::ContentHash empty;
+  EXPECT_EQ(empty.hex(), "2d06800538d394c2");
   fi::ContentHash a;
   a.addText("a");
-  EXPECT_EQ(a.value(), 0xaf63dc4c8601ec8cull);
+  EXPECT_EQ(a.value(), 0xe6c632b61e964e1full);
   fi::ContentHash foobar;
   foobar.addText("foo");
   foobar.addText("bar");  // incremental = all at once
-  EXPECT_EQ(foobar.hex(), "85944171f73967e8");
+  EXPECT_EQ(foobar.hex(), "d78fda63144c5c84");
+  // Longer than XXH3's internal blocks, added in uneven pieces (one of them empty):
+  // python3 -c "import sys; sys.stdout.buffer.write(bytes((i*7+3)%256 for i in range(5000)))"
+  std::vector<unsigned char> bytes(5000);
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    bytes[i] = static_cast<unsigned char>((i * 7 + 3) % 256);
+  }
+  fi::ContentHash pieces;
+  std::size_t start = 0;
+  for (const std::size_t piece :
+       {std::size_t{1}, std::size_t{0}, std::size_t{250}, std::size_t{1999}}) {
+    pieces.addBytes(bytes.data() + start, piece);
+    start += piece;
+  }
+  pieces.addBytes(bytes.data() + start, bytes.size() - start);
+  EXPECT_EQ(pieces.hex(), "799aaddd7339581d");
+  fi::ContentHash whole;
+  whole.addBytes(bytes.data(), bytes.size());
+  EXPECT_EQ(whole.value(), pieces.value());
 }
 
 TEST(Provenance, ConfigHashFollowsEveryValueAndFileHashTheBytes) {
@@ -218,7 +237,7 @@ TEST(Provenance, ConfigHashFollowsEveryValueAndFileHashTheBytes) {
 
   fi::io_test::TempDir dir;
   fi::io_test::writeBytes(dir.file("scan.txt"), "a");
-  EXPECT_EQ(fi::fileHash(dir.file("scan.txt")), "af63dc4c8601ec8c");
+  EXPECT_EQ(fi::fileHash(dir.file("scan.txt")), "e6c632b61e964e1f");
   EXPECT_EQ(fi::fileHash(dir.file("missing.txt")), "unreadable");
   EXPECT_EQ(fi::utcTimestamp(0), "1970-01-01T00:00:00Z");
 }
