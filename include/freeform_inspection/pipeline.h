@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include "freeform_inspection/comparison_points.h"
 #include "freeform_inspection/correspondence.h"
 #include "freeform_inspection/defects.h"
 #include "freeform_inspection/descriptor.h"
@@ -63,6 +64,9 @@ struct PipelineConfig {
   /// Named regions with their own band or left out (regions.h); not in config_fields' table:
   /// they come from a regions file (CLI --regions, the node's ~regions_file).
   std::vector<RegionConfig> regions;
+  /// Named places read and judged one by one (comparison_points.h); like the regions, from a
+  /// file (CLI --points, the node's ~points_file).
+  std::vector<ComparisonPointConfig> comparison_points;
 };
 
 /// @brief Checks every field of the configuration.
@@ -72,10 +76,6 @@ std::vector<std::string> validate(const PipelineConfig& config);
 /// Outcome of the registration, separate from the part's verdict. kFixed: not registered, the
 /// caller's pose taken as it is (inspectAt).
 enum class RegistrationStatus { kOk, kAmbiguous, kFailed, kFixed };
-
-/// The part's verdict. PASS/FAIL only after a registration that passed its quality gates, or at
-/// a pose the caller fixed (inspectAt).
-enum class Verdict { kPass, kFail, kNotEvaluated };
 
 const char* toString(RegistrationStatus status);  ///< "ok" | "ambiguous" | "failed" | "fixed"
 const char* toString(Verdict verdict);            ///< "PASS" | "FAIL" | "NOT_EVALUATED"
@@ -177,8 +177,10 @@ struct InspectionResult {
   std::vector<DefectRegion> defects;  ///< largest |peak| first
   std::vector<RegionResult> regions;  ///< one per named region, in the configuration's order
   ConformanceZones conformance;  ///< the guard bands' decision (verdict.measurement_uncertainty)
-  DeviationMap deviation_map;    ///< per scan point, CAD frame (empty when failed)
-  Triangles scan_faces;          ///< the cleaned scan's triangles (indices into the map)
+  /// One per configured comparison point, in the configuration's order (comparison_points.h).
+  std::vector<ComparisonPointResult> comparison_points;
+  DeviationMap deviation_map;  ///< per scan point, CAD frame (empty when failed)
+  Triangles scan_faces;        ///< the cleaned scan's triangles (indices into the map)
   InspectionCounts counts;
   std::vector<StageTiming> timings;   ///< per stage, last entry "total"
   std::vector<std::string> warnings;  ///< non-fatal findings for the caller to log

@@ -36,6 +36,10 @@ const char* toString(StatusCode code);
 /// Messages joined with "; " into one line (for one-line errors that list several causes).
 std::string joinMessages(const std::vector<std::string>& messages);
 
+/// The part's verdict (pipeline.h). PASS/FAIL only after a registration that passed its quality
+/// gates, or at a pose the caller fixed (inspectAt).
+enum class Verdict { kPass, kFail, kNotEvaluated };
+
 /// A status code plus a message that names the offending quantity and its value.
 struct Status {
   StatusCode code = StatusCode::kOk;  ///< kOk when the stage succeeded

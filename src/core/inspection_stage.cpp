@@ -267,6 +267,12 @@ void measurePart(const Model& model,
       summarizeRegions(model, config, map, bands, covered, cell_region, result->defects);
   result->conformance = conformanceZones(judged, surface, bands, config, &result->regions);
   noteChordError(model, map, distances.faces, config, result);
+  result->comparison_points = readComparisonPoints(config.comparison_points,
+                                                   config.regions,
+                                                   config.tolerance,
+                                                   model.query(),
+                                                   map,
+                                                   model.cellSize());
   result->scan_faces = scan.faces;
   // A band narrower than the residual noise of the fit flags scattered points, not the part. At
   // a fixed pose the residual holds the part's offset from the pose too: the scan's own noise.
@@ -345,11 +351,55 @@ void judgePart(const PipelineConfig& config, InspectionResult* result) {
                            formatLength(stats.min) + " to " + formatLength(stats.max);
 }
 
+// Each comparison point's verdict; one that fails fails the part, one not shown or within the
+// measurement uncertainty of a limit leaves a part that would pass not evaluated.
+void judgeComparisonPoints(const PipelineConfig& config, InspectionResult* result) {
+  const bool posed = result->status.code != StatusCode::kCancelled &&
+                     (result->registration == RegistrationStatus::kOk ||
+                      result->registration == RegistrationStatus::kFixed) &&
+                     result->comparison_points.size() == config.comparison_points.size();
+  if (!posed) {
+    const std::string why = "not evaluated: the part is not (" + result->verdict_reason + ")";
+    result->comparison_points.clear();
+    for (const ComparisonPointConfig& point : config.comparison_points) {
+      ComparisonPointResult unread;
+      unread.name = point.name;
+      unread.tolerance = point.tolerance;
+      unread.verdict_reason = why;
+      result->comparison_points.push_back(unread);
+    }
+    return;
+  }
+  const ComparisonPointResult* failed = nullptr;
+  const ComparisonPointResult* undecided = nullptr;
+  for (ComparisonPointResult& point : result->comparison_points) {
+    judgeComparisonPoint(config.verdict.measurement_uncertainty, &point);
+    if (point.verdict == Verdict::kFail && failed == nullptr) {
+      failed = &point;
+    }
+    if (point.verdict == Verdict::kNotEvaluated && undecided == nullptr) {
+      undecided = &point;
+    }
+  }
+  if (failed != nullptr && result->verdict != Verdict::kFail) {
+    result->verdict = Verdict::kFail;
+    result->verdict_reason =
+        "comparison point '" + failed->name + "' fails: " + failed->verdict_reason;
+  } else if (undecided != nullptr && result->verdict == Verdict::kPass) {
+    result->verdict = Verdict::kNotEvaluated;
+    const std::string prefix = "not evaluated: ";
+    const std::string& reason = undecided->verdict_reason;
+    const std::string why = reason.rfind(prefix, 0) == 0 ? reason.substr(prefix.size()) : reason;
+    result->verdict_reason = "not evaluated: comparison point '" + undecided->name + "': " + why;
+  }
+}
+
 }  // namespace
 
 void judge(const PipelineConfig& config, InspectionResult* result) {
   judgePart(config, result);
   judgeRegions(config, result);
+  judgeComparisonPoints(config, result);
 }
 
 }  // namespace freeform_inspection::internal

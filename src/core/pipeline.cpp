@@ -1457,7 +1457,8 @@ std::vector<std::string> validate(const PipelineConfig& config) {
   for (const auto& list : {validate(config.tolerance),
                            validate(config.deviation),
                            validate(config.defects),
-                           validate(config.regions)}) {
+                           validate(config.regions),
+                           validate(config.comparison_points)}) {
     errors.insert(errors.end(), list.begin(), list.end());
   }
   const VerdictConfig& verdict = config.verdict;

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "io/file_util.h"
+#include "yaml_file_internal.h"
 #include <yaml-cpp/yaml.h>
 
 namespace freeform_inspection {
@@ -26,23 +26,14 @@ Eigen::Vector3d corner(const YAML::Node& node, const std::string& what) {
   return {node[0].as<double>(), node[1].as<double>(), node[2].as<double>()};
 }
 
-// Refuses keys outside `known`: a misspelt key silently ignored is a wrong inspection.
-void checkKeys(const YAML::Node& map, const std::set<std::string>& known, const std::string& what) {
-  for (const auto& entry : map) {
-    const std::string key = entry.first.as<std::string>();
-    if (known.count(key) == 0) {
-      throw std::runtime_error(what + " has an unknown key '" + key + "'");
-    }
-  }
-}
-
 RegionConfig parseRegion(const YAML::Node& node, std::size_t position) {
   RegionConfig region;
   const std::string what = "region " + std::to_string(position + 1);
   if (!node.IsMap()) {
     throw std::runtime_error(what + " must be a map with name and boxes");
   }
-  checkKeys(node, {"name", "boxes", "tolerance", "evaluate", "align", "min_coverage"}, what);
+  internal::checkKeys(
+      node, {"name", "boxes", "tolerance", "evaluate", "align", "min_coverage"}, what);
   if (node["name"]) {
     region.name = node["name"].as<std::string>();
   }
@@ -55,18 +46,13 @@ RegionConfig parseRegion(const YAML::Node& node, std::size_t position) {
     if (!box.IsMap()) {
       throw std::runtime_error(named + ": each box must be a map {min: [x, y, z], max: [x, y, z]}");
     }
-    checkKeys(box, {"min", "max"}, named + "'s box");
+    internal::checkKeys(box, {"min", "max"}, named + "'s box");
     region.boxes.push_back(
         {corner(box["min"], named + "'s box min"), corner(box["max"], named + "'s box max")});
   }
   if (const YAML::Node tolerance = node["tolerance"]) {
-    if (!tolerance.IsMap() || !tolerance["upper"] || !tolerance["lower"]) {
-      throw std::runtime_error(named + ": tolerance must be a map {upper: +m, lower: -m}");
-    }
-    checkKeys(tolerance, {"upper", "lower"}, named + "'s tolerance");
     region.has_tolerance = true;
-    region.tolerance.upper = tolerance["upper"].as<double>();
-    region.tolerance.lower = tolerance["lower"].as<double>();
+    region.tolerance = internal::parseTolerance(tolerance, named);
   }
   if (node["evaluate"]) {
     region.evaluate = node["evaluate"].as<bool>();
@@ -116,47 +102,18 @@ std::vector<std::string> validate(const std::vector<RegionConfig>& regions) {
 
 RegionsLoadResult parseRegions(const std::string& yaml_text) {
   RegionsLoadResult result;
-  std::vector<std::string> errors;
-  try {
-    const YAML::Node root = YAML::Load(yaml_text);
-    if (!root.IsMap() || !root["regions"] || !root["regions"].IsSequence()) {
-      errors.push_back("a regions file must hold a list under 'regions:'");
-    } else {
-      checkKeys(root, {"regions"}, "the regions file");
-      std::size_t position = 0;
-      for (const auto& node : root["regions"]) {
-        result.regions.push_back(parseRegion(node, position++));
-      }
-    }
-  } catch (const YAML::Exception& e) {
-    errors.push_back(std::string("YAML error: ") + e.what());
-  } catch (const std::runtime_error& e) {
-    errors.push_back(e.what());
-  }
-  if (errors.empty()) {
-    errors = validate(result.regions);
-  }
-  if (!errors.empty()) {
-    result.status =
-        Status::failure(StatusCode::kInvalidInput, "invalid regions: " + joinMessages(errors));
-    result.regions.clear();
-  }
+  result.status = internal::parseYamlList(
+      yaml_text,
+      "regions",
+      "regions",
+      parseRegion,
+      [](const auto& items) { return validate(items); },
+      &result.regions);
   return result;
 }
 
 RegionsLoadResult loadRegionsFile(const std::string& path) {
-  io_internal::FileBytes bytes;
-  const Status read = io_internal::readWholeFile(path, &bytes);
-  if (!read.ok()) {
-    RegionsLoadResult result;
-    result.status = Status::failure(read.code, "regions file: " + read.message);
-    return result;
-  }
-  RegionsLoadResult result = parseRegions(std::string(bytes.view()));
-  if (!result.status.ok()) {
-    result.status.message = "regions file '" + path + "': " + result.status.message;
-  }
-  return result;
+  return internal::parseYamlFile<RegionsLoadResult>(path, "regions", parseRegions);
 }
 
 std::vector<int> regionOf(const std::vector<RegionConfig>& regions, const Points& places) {

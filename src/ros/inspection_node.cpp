@@ -102,8 +102,11 @@ InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     model_error = "no model loaded: set ~model and ~model_units or call ~load_model";
     ROS_WARN_STREAM(model_error);
   } else {
-    model_error = installModel(
-        config_.model, config_.model_units, config_.model_id, config_.pipeline.regions, nullptr);
+    model_error = installModel(config_.model,
+                               config_.model_units,
+                               config_.model_id,
+                               {config_.pipeline.regions, config_.pipeline.comparison_points},
+                               nullptr);
     if (!model_error.empty()) {
       ROS_ERROR_STREAM(model_error << " (the node keeps running; use ~load_model)");
     }
@@ -243,7 +246,7 @@ bool InspectionNode::stopping() const {
 std::string InspectionNode::installModel(const std::string& uri,
                                          const std::string& units,
                                          const std::string& id,
-                                         std::vector<fi::RegionConfig> regions,
+                                         ModelPlan plan,
                                          LoadModel::Response* summary) {
   const auto scale = fi::unitScale(units);
   if (!scale) {
@@ -265,7 +268,7 @@ std::string InspectionNode::installModel(const std::string& uri,
   {
     std::lock_guard<std::mutex> lock(model_mutex_);
     model_ = model;
-    regions_ = std::move(regions);
+    plan_ = std::move(plan);
     model_error_.clear();
   }
   const Eigen::Vector3d extent = model->bounds().extent();
@@ -294,23 +297,39 @@ bool InspectionNode::onLoadModel(LoadModel::Request& request, LoadModel::Respons
           ? "cannot resolve model URL '" + request.path + "'"
           : checkModelAccess(
                 path, dirs, static_cast<std::uintmax_t>(config_.max_model_mb) * 1024U * 1024U);
-  // The regions are the new model's: none unless the request names a file of them.
-  fi::RegionsLoadResult regions;
+  // The regions and comparison points are the new model's: none unless the request names files
+  // of them, which must lie where the model may.
+  const auto planFile = [&](const std::string& uri, const std::string& what) {
+    const std::string file = resolveModelPath(uri);
+    if (file.empty()) {
+      return std::make_pair(std::string(), "cannot resolve " + what + " URL '" + uri + "'");
+    }
+    return std::make_pair(
+        file,
+        checkModelAccess(
+            file, dirs, static_cast<std::uintmax_t>(config_.max_model_mb) * 1024U * 1024U));
+  };
+  ModelPlan plan;
   if (error.empty() && !request.regions_uri.empty()) {
-    const std::string regions_path = resolveModelPath(request.regions_uri);
-    error =
-        regions_path.empty()
-            ? "cannot resolve regions URL '" + request.regions_uri + "'"
-            : checkModelAccess(regions_path,
-                               dirs,
-                               static_cast<std::uintmax_t>(config_.max_model_mb) * 1024U * 1024U);
+    const auto [regions_path, refused] = planFile(request.regions_uri, "regions");
+    error = refused;
     if (error.empty()) {
-      regions = fi::loadRegionsFile(regions_path);
+      fi::RegionsLoadResult regions = fi::loadRegionsFile(regions_path);
       error = regions.status.message;
+      plan.regions = std::move(regions.regions);
+    }
+  }
+  if (error.empty() && !request.points_uri.empty()) {
+    const auto [points_path, refused] = planFile(request.points_uri, "comparison points");
+    error = refused;
+    if (error.empty()) {
+      fi::ComparisonPointsLoadResult points = fi::loadComparisonPointsFile(points_path);
+      error = points.status.message;
+      plan.comparison_points = std::move(points.points);
     }
   }
   if (error.empty()) {
-    error = installModel(request.path, request.units, id, std::move(regions.regions), &response);
+    error = installModel(request.path, request.units, id, std::move(plan), &response);
   }
   response.success = error.empty();
   response.message = error.empty() ? "loaded model '" + id + "'" : error;
@@ -440,7 +459,7 @@ std::optional<InspectionReport> InspectionNode::initialPose(
 InspectionReport InspectionNode::inspect(const Inspect::Request& request,
                                          ScanMessage scan,
                                          const std::shared_ptr<const fi::Model>& model,
-                                         const std::vector<fi::RegionConfig>& regions,
+                                         const ModelPlan& plan,
                                          const StageHook& stage) {
   if (auto refused = refusal(request, model)) {
     return *refused;
@@ -495,7 +514,8 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
     header.frame_id = config_.fixed_frame;
   }
   fi::PipelineConfig pipeline = requestPipeline(config_.pipeline, request);
-  pipeline.regions = regions;
+  pipeline.regions = plan.regions;
+  pipeline.comparison_points = plan.comparison_points;
   // ~input/crop_box is given in the fixed frame when there is one (a box around the fixture
   // holds wherever a robot carries the scanner), else in the scan's own.
   pipeline.input.crop_frame_from_scan = T_fixed_scan;
@@ -612,13 +632,13 @@ InspectionReport InspectionNode::inspectAndPublishLocked(const Inspect::Request&
                                                          const StageHook& stage,
                                                          const ScanMessage& scan) {
   std::shared_ptr<const fi::Model> current;
-  std::vector<fi::RegionConfig> regions;
+  ModelPlan plan;
   {
-    std::lock_guard<std::mutex> lock(model_mutex_);  // the model with its own regions
+    std::lock_guard<std::mutex> lock(model_mutex_);  // the model with its own plan
     current = model_;
-    regions = regions_;
+    plan = plan_;
   }
-  InspectionReport report = inspect(request, scan, current, regions, stage);
+  InspectionReport report = inspect(request, scan, current, plan, stage);
   report.part_id = request.part_id;
   report.model_id = current ? current->id() : "";
   if (report.error_code == kCancelledCode) {

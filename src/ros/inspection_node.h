@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "parameters.h"
 #include <actionlib/server/simple_action_server.h>
@@ -23,7 +24,9 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
+#include "freeform_inspection/comparison_points.h"
 #include "freeform_inspection/model.h"
+#include "freeform_inspection/regions.h"
 #include <freeform_inspection/Inspect.h>
 #include <freeform_inspection/InspectAction.h>
 #include <freeform_inspection/LoadModel.h>
@@ -50,6 +53,13 @@ struct ScanMessage {
 /// `~auto_inspect` a worker thread inspects the latest scan; scans that arrive while it is busy
 /// replace the waiting one and are counted as dropped. One inspection runs at a time, whoever
 /// asked. The same class runs as the standalone node and as the nodelet.
+/// What a model is inspected with besides the settings: its named regions and comparison points,
+/// both in its frame, so replaced with it.
+struct ModelPlan {
+  std::vector<freeform_inspection::RegionConfig> regions;
+  std::vector<freeform_inspection::ComparisonPointConfig> comparison_points;
+};
+
 class InspectionNode {
  public:
   /// @param pnh private node handle ("~"): parameters, outputs and services live under it.
@@ -82,12 +92,12 @@ class InspectionNode {
   void autoInspectLoop();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
-  /// Loads and installs a model with the named regions of its surface (regions.h); returns ""
+  /// Loads and installs a model with its plan (named regions, comparison points); returns ""
   /// or the reason it failed.
   std::string installModel(const std::string& uri,
                            const std::string& units,
                            const std::string& id,
-                           std::vector<freeform_inspection::RegionConfig> regions,
+                           ModelPlan plan,
                            freeform_inspection::LoadModel::Response* summary);
   /// Runs one inspection, publishes its outputs and returns the report. A given `scan` is
   /// inspected instead of the one the request names (auto_inspect hands the received message on
@@ -104,7 +114,7 @@ class InspectionNode {
       const freeform_inspection::Inspect::Request& request,
       ScanMessage scan,
       const std::shared_ptr<const freeform_inspection::Model>& model,
-      const std::vector<freeform_inspection::RegionConfig>& regions,
+      const ModelPlan& plan,
       const StageHook& stage);
   /// The refusal of a request that cannot be inspected (no or another model), or nothing.
   std::optional<freeform_inspection::InspectionReport> refusal(
@@ -147,7 +157,7 @@ class InspectionNode {
 
   mutable std::mutex model_mutex_;
   std::shared_ptr<const freeform_inspection::Model> model_;
-  std::vector<freeform_inspection::RegionConfig> regions_;  // model_'s, replaced with it
+  ModelPlan plan_;           // model_'s, replaced with it
   std::string model_error_;  // why no model is loaded, for the Inspect answer
 
   // One inspection at a time (service, action or auto); timed so a queued goal can be cancelled.

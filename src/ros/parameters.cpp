@@ -33,7 +33,8 @@ const std::vector<std::string> kNodeKeys = {"model",
                                             "max_model_mb",
                                             "report_dir",
                                             "model_cache_dir",
-                                            "regions_file"};
+                                            "regions_file",
+                                            "points_file"};
 
 struct ReadParam {
   const ros::NodeHandle& pnh;
@@ -124,6 +125,7 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
   pnh.param("report_dir", config.report_dir, config.report_dir);
   pnh.param("model_cache_dir", config.model_cache_dir, defaultModelCacheDir());
   pnh.param("regions_file", config.regions_file, config.regions_file);
+  pnh.param("points_file", config.points_file, config.points_file);
   std::set<std::string> known(kNodeKeys.begin(), kNodeKeys.end());
   for (const auto& field : fi::configFields(config.pipeline)) {
     std::visit(ReadParam{pnh, field.key, &result.errors}, field.target);
@@ -154,6 +156,15 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
       config.pipeline.regions = std::move(regions.regions);
     } else {
       result.errors.push_back("~regions_file: " + regions.status.message);
+    }
+  }
+  if (!config.points_file.empty()) {
+    fi::ComparisonPointsLoadResult points =
+        fi::loadComparisonPointsFile(resolveModelPath(config.points_file));
+    if (points.status.ok()) {
+      config.pipeline.comparison_points = std::move(points.points);
+    } else {
+      result.errors.push_back("~points_file: " + points.status.message);
     }
   }
   for (const auto& error : fi::validate(config.pipeline)) {

@@ -39,6 +39,9 @@ struct NodeConfig {
   /// Named regions of the CAD with their own tolerance or left out of the verdict (regions.h):
   /// a YAML file path or package:// URL, read at start-up into pipeline.regions; empty: none.
   std::string regions_file;
+  /// Comparison points of the CAD (comparison_points.h): a YAML file path or package:// URL,
+  /// read at start-up into pipeline.comparison_points; empty: none.
+  std::string points_file;
   freeform_inspection::PipelineConfig pipeline;  ///< ~input/*, ~tolerance/*
 };
 

@@ -197,6 +197,24 @@ void fillDeviation(const fi::InspectionResult& result,
     message.deviation = deviationStats(region.deviation);
     report->regions.push_back(message);
   }
+  for (const fi::ComparisonPointResult& point : result.comparison_points) {
+    freeform_inspection::ComparisonPointReport message;
+    message.name = point.name;
+    message.status = verdictCode(point.verdict);
+    message.message = point.verdict_reason;
+    message.nominal.x = point.nominal.x();
+    message.nominal.y = point.nominal.y();
+    message.nominal.z = point.nominal.z();
+    message.normal.x = point.normal.x();
+    message.normal.y = point.normal.y();
+    message.normal.z = point.normal.z();
+    message.tolerance_upper = point.tolerance.upper;
+    message.tolerance_lower = point.tolerance.lower;
+    message.points = static_cast<std::uint32_t>(point.points);
+    message.deviation = point.deviation;
+    message.spread = point.spread;
+    report->comparison_points.push_back(message);
+  }
   std::uint32_t id = 0;
   for (const fi::DefectRegion& defect : result.defects) {
     freeform_inspection::Defect message;

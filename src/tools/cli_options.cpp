@@ -55,6 +55,7 @@ std::string apply(const std::string& flag, const std::string& value, CliOptions*
                                                      {"--scan", &options->scan_path},
                                                      {"--config", &options->config_path},
                                                      {"--regions", &options->regions_path},
+                                                     {"--points", &options->points_path},
                                                      {"--report", &options->report_path},
                                                      {"--deviation", &options->deviation_path},
                                                      {"--html", &options->html_path},
@@ -133,6 +134,7 @@ std::string cliUsage() {
   return "usage: freeform_inspect --cad CAD.{stl,ply,obj} --scan SCAN.{ply,pcd,stl,obj}\n"
          "                        [--cad-scale S] [--scan-scale S] [--tolerance T]\n"
          "                        [--config FILE.yaml] [--regions FILE.yaml]\n"
+         "                        [--points FILE.yaml]\n"
          "                        [--report OUT.json] [--deviation OUT.ply]\n"
          "                        [--html OUT.html] [--csv DIR] [--part-id ID]\n"
          "                        [--model-cache DIR | --no-model-cache]\n"
@@ -152,6 +154,8 @@ std::string cliUsage() {
          "--tolerance 0.0002 is a band of +-0.2 mm.\n"
          "--regions names regions of the CAD (boxes in its frame, metres) with a tolerance of\n"
          "their own or left out of the verdict; each is reported and judged (docs/inspection.md).\n"
+         "--points names comparison points on the CAD (positions in its frame, metres): the\n"
+         "deviation read there from the scan, judged against a band of its own or the surface's.\n"
          "The CAD's descriptors and symmetries are kept between runs in --model-cache DIR\n"
          "(default $XDG_CACHE_HOME or ~/.cache, under freeform_inspection/models), so the next\n"
          "run on the same CAD skips computing them; --no-model-cache turns that off.\n"

@@ -17,6 +17,7 @@ struct CliOptions {
   std::optional<double> tolerance;  ///< --tolerance [m], symmetric band ±T
   std::string config_path;          ///< --config FILE.yaml
   std::string regions_path;         ///< --regions FILE.yaml (regions.h)
+  std::string points_path;          ///< --points FILE.yaml (comparison_points.h)
   std::string report_path;          ///< --report OUT.json
   std::string deviation_path;       ///< --deviation OUT.ply
   std::string html_path;            ///< --html OUT.html

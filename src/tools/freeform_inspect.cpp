@@ -18,6 +18,7 @@
 #include "report_json.h"
 #include "report_provenance.h"
 
+#include "freeform_inspection/comparison_points.h"
 #include "freeform_inspection/config_yaml.h"
 #include "freeform_inspection/io.h"
 #include "freeform_inspection/model.h"
@@ -47,7 +48,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Reads the YAML configuration (or the defaults) and the regions, and applies --tolerance.
+// Reads the YAML configuration (or the defaults), the regions and the comparison points, and
+// applies --tolerance.
 fi::ConfigLoadResult configure(const fi::CliOptions& options) {
   fi::ConfigLoadResult loaded;
   if (!options.config_path.empty()) {
@@ -57,6 +59,11 @@ fi::ConfigLoadResult configure(const fi::CliOptions& options) {
     fi::RegionsLoadResult regions = fi::loadRegionsFile(options.regions_path);
     loaded.status = regions.status;
     loaded.config.regions = std::move(regions.regions);
+  }
+  if (loaded.status.ok() && !options.points_path.empty()) {
+    fi::ComparisonPointsLoadResult points = fi::loadComparisonPointsFile(options.points_path);
+    loaded.status = points.status;
+    loaded.config.comparison_points = std::move(points.points);
   }
   if (options.tolerance) {
     loaded.config.tolerance.upper = *options.tolerance;

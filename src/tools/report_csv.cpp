@@ -192,6 +192,39 @@ std::string regionsTable(const InspectionResult& result) {
   return text;
 }
 
+std::string pointsTable(const InspectionResult& result) {
+  std::string text = line({"name",
+                           "verdict",
+                           "deviation_mm",
+                           "lower_mm",
+                           "upper_mm",
+                           "points",
+                           "spread_mm",
+                           "nominal_x_mm",
+                           "nominal_y_mm",
+                           "nominal_z_mm",
+                           "off_surface_mm",
+                           "radius_mm",
+                           "verdict_reason"});
+  for (const ComparisonPointResult& p : result.comparison_points) {
+    const bool placed = p.normal.squaredNorm() > 0.0;  // not placed: no position to give
+    text += line({field(p.name),
+                  toString(p.verdict),
+                  mm(p.deviation),
+                  mm(p.tolerance.lower),
+                  mm(p.tolerance.upper),
+                  std::to_string(p.points),
+                  mm(p.spread),
+                  placed ? mm(p.nominal.x()) : "",
+                  placed ? mm(p.nominal.y()) : "",
+                  placed ? mm(p.nominal.z()) : "",
+                  placed ? mm(p.off_surface) : "",
+                  placed ? mm(p.radius) : "",
+                  field(p.verdict_reason)});
+  }
+  return text;
+}
+
 }  // namespace
 
 std::vector<CsvTable> renderCsvTables(const InspectionResult& result,
@@ -200,7 +233,8 @@ std::vector<CsvTable> renderCsvTables(const InspectionResult& result,
   return {{"summary.csv", line(summaryHeader()) + line(summaryRow(result, config, provenance))},
           {"defects.csv", defectsTable(result)},
           {"histogram.csv", histogramTable(result.deviation)},
-          {"regions.csv", regionsTable(result)}};
+          {"regions.csv", regionsTable(result)},
+          {"points.csv", pointsTable(result)}};
 }
 
 Status saveCsvTables(const std::string& directory,

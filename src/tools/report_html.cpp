@@ -186,6 +186,34 @@ std::string regionsSection(const std::vector<RegionResult>& regions) {
   return html + "</table>\n";
 }
 
+// Pass/fail per comparison point (comparison_points.h): the deviation read there and its band.
+std::string pointsSection(const std::vector<ComparisonPointResult>& points) {
+  if (points.empty()) {
+    return "";
+  }
+  std::string html =
+      "<h2>Comparison points</h2>\n<table class=\"defects\">\n<tr><th>point</th>"
+      "<th>verdict</th><th>deviation</th><th>band</th><th>points read</th><th>spread</th>"
+      "<th>nominal [mm]</th><th>why</th></tr>\n";
+  for (const ComparisonPointResult& p : points) {
+    const bool measured = p.measured();
+    const bool placed = p.normal.squaredNorm() > 0.0;
+    const std::string nominal = placed ? number(p.nominal.x() * 1e3, 2) + ", " +
+                                             number(p.nominal.y() * 1e3, 2) + ", " +
+                                             number(p.nominal.z() * 1e3, 2)
+                                       : "&ndash;";
+    html += tableRow(escapeHtml(p.name),
+                     {toString(p.verdict),
+                      measured ? millimetres(p.deviation) : "&ndash;",
+                      millimetres(p.tolerance.lower) + " to " + millimetres(p.tolerance.upper),
+                      std::to_string(p.points),
+                      measured ? millimetres(p.spread) : "&ndash;",
+                      nominal,
+                      escapeHtml(p.verdict_reason)});
+  }
+  return html + "</table>\n";
+}
+
 // `region`: the named region's name as HTML, or a dash.
 std::string defectRow(std::size_t id, const DefectRegion& d, const std::string& region) {
   const std::string centroid = number(d.centroid.x() * 1e3, 2) + ", " +
@@ -257,7 +285,7 @@ std::string renderHtmlReport(const InspectionResult& result,
          kStyle + "</head>\n<body>\n<h1>Inspection report: " + escapeHtml(part) + "</h1>\n" +
          verdictBanner(result) + provenanceSection(provenance, config_hash) +
          statisticsSection(result.deviation, config.tolerance) + regionsSection(result.regions) +
-         conformanceSection(result.conformance) +
+         pointsSection(result.comparison_points) + conformanceSection(result.conformance) +
          mapSection(result,
                     toleranceBands(config.regions, result.deviation_map.region, config.tolerance)) +
          defectsSection(result) + registrationSection(result) + warningsSection(result.warnings) +

@@ -108,6 +108,24 @@ nlohmann::ordered_json regionsJson(const std::vector<RegionResult>& regions) {
   return list;
 }
 
+nlohmann::ordered_json comparisonPointsJson(const std::vector<ComparisonPointResult>& points) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const ComparisonPointResult& p : points) {
+    list.push_back({{"name", p.name},
+                    {"nominal", vectorJson(p.nominal)},
+                    {"normal", vectorJson(p.normal)},
+                    {"off_surface", p.off_surface},
+                    {"radius", p.radius},
+                    {"tolerance", {{"upper", p.tolerance.upper}, {"lower", p.tolerance.lower}}},
+                    {"points", p.points},
+                    {"deviation", numberOrNull(p.deviation)},
+                    {"spread", numberOrNull(p.spread)},
+                    {"verdict", toString(p.verdict)},
+                    {"verdict_reason", p.verdict_reason}});
+  }
+  return list;
+}
+
 // The part's pose in the scan frame, as geometry_msgs/PoseWithCovariance orders it.
 nlohmann::ordered_json poseUncertaintyJson(const PoseUncertainty& u) {
   if (!u.known) {
@@ -184,6 +202,7 @@ nlohmann::ordered_json toJson(const InspectionResult& result) {
   json["deviation"] = deviationJson(result.deviation);
   json["defects"] = defectsJson(result);
   json["regions"] = regionsJson(result.regions);
+  json["comparison_points"] = comparisonPointsJson(result.comparison_points);
   json["conformance"] = conformanceJson(result.conformance);
   json["counts"] = countsJson(result.counts);
   json["timings_s"] = nlohmann::ordered_json::object();

@@ -63,7 +63,8 @@ std::vector<std::pair<std::string, std::string>> configEntries(const PipelineCon
   for (const ConfigField& field : configFields(copy)) {
     entries.emplace_back(field.key, valueText(field));
   }
-  // The regions judge the part as much as the fields do: they are in the hash too.
+  // The regions and comparison points judge the part as much as the fields do: they are in the
+  // hash too.
   const auto point = [](const Eigen::Vector3d& p) {
     return "[" + numberText(p.x()) + ", " + numberText(p.y()) + ", " + numberText(p.z()) + "]";
   };
@@ -79,6 +80,16 @@ std::vector<std::pair<std::string, std::string>> configEntries(const PipelineCon
     text += std::string("evaluate ") + (region.evaluate ? "true" : "false") + "; align " +
             (region.align ? "true" : "false") + "; min_coverage " + numberText(region.min_coverage);
     entries.emplace_back("regions/" + region.name, text);
+  }
+  // So are the comparison points.
+  for (const ComparisonPointConfig& p : config.comparison_points) {
+    std::string text = "position " + point(p.position) + "; ";
+    if (p.has_tolerance) {
+      text += "tolerance " + numberText(p.tolerance.lower) + " to " +
+              numberText(p.tolerance.upper) + "; ";
+    }
+    text += "radius " + numberText(p.radius);
+    entries.emplace_back("points/" + p.name, text);
   }
   return entries;
 }

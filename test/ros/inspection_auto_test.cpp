@@ -92,6 +92,14 @@ TEST(AutoInspect, APublishedScanIsInspectedReportedAndDiagnosed) {
   EXPECT_EQ(report->regions[1].status, InspectionReport::PASS) << report->regions[1].message;
   EXPECT_EQ(report->regions[1].tolerance_upper, 0.0005);
   EXPECT_GT(report->deviation.n_excluded, 0u);
+  // The comparison points of ~points_file (data/blade/blade_points.yaml), each read and passed.
+  ASSERT_EQ(report->comparison_points.size(), 3u);
+  EXPECT_EQ(report->comparison_points[1].name, "span_50");
+  EXPECT_EQ(report->comparison_points[1].tolerance_upper, 0.00005);
+  for (const auto& point : report->comparison_points) {
+    EXPECT_EQ(point.status, InspectionReport::PASS) << point.name << ": " << point.message;
+    EXPECT_GE(point.points, 3u) << point.name;
+  }
   const auto on_tf = partOnTf(ros::Time(1234.5));
   ASSERT_TRUE(on_tf);
   expectSamplePose(*on_tf, "tf scanner → part");

@@ -388,6 +388,7 @@ TEST(InspectionNode, LoadModelWithRegionsJudgesEachRegion) {
   with_regions.request.path = "package://freeform_inspection/data/blade/blade_fine.stl";
   with_regions.request.units = "mm";
   with_regions.request.regions_uri = "package://freeform_inspection/data/blade/blade_regions.yaml";
+  with_regions.request.points_uri = "package://freeform_inspection/data/blade/blade_points.yaml";
   ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", with_regions));
   ASSERT_TRUE(with_regions.response.success) << with_regions.response.message;
   // The part's band far below the sample's noise (σ 0.02 mm): the airfoil fails, the root holds
@@ -426,6 +427,23 @@ TEST(InspectionNode, LoadModelWithRegionsJudgesEachRegion) {
   }
   EXPECT_EQ(per_region[0], report.regions[0].deviation.n_points);
   EXPECT_EQ(per_region[1], report.regions[1].deviation.n_points);
+  // The model's comparison points, read where the sample is smooth: a few µm against σ 0.02 mm.
+  ASSERT_EQ(report.comparison_points.size(), 3u);
+  EXPECT_EQ(report.comparison_points[0].name, "span_25");
+  EXPECT_EQ(report.comparison_points[0].tolerance_upper, 0.00001);  // the request's band
+  const auto& span_50 = report.comparison_points[1];
+  EXPECT_EQ(span_50.name, "span_50");
+  EXPECT_EQ(span_50.tolerance_upper, 0.00005);  // its own
+  EXPECT_EQ(span_50.status, InspectionReport::PASS) << span_50.message;
+  for (const auto& point : report.comparison_points) {
+    EXPECT_GE(point.points, 3u) << point.name;
+    EXPECT_LT(std::abs(point.deviation), 3e-5) << point.name;
+    EXPECT_NEAR(point.normal.x * point.normal.x + point.normal.y * point.normal.y +
+                    point.normal.z * point.normal.z,
+                1.0,
+                1e-9);
+  }
+  EXPECT_EQ(report.comparison_points[2].name, "near_tip");
 
   LoadModel bad = with_regions;
   bad.request.regions_uri = "package://freeform_inspection/data/blade/no_such_regions.yaml";
@@ -434,12 +452,21 @@ TEST(InspectionNode, LoadModelWithRegionsJudgesEachRegion) {
   EXPECT_NE(bad.response.message.find("no_such_regions.yaml"), std::string::npos)
       << bad.response.message;
   EXPECT_EQ(callInspect(request).report.regions.size(), 2u) << "the model and its regions kept";
+  LoadModel bad_points = with_regions;
+  bad_points.request.points_uri = "package://freeform_inspection/data/blade/blade_regions.yaml";
+  ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", bad_points));
+  EXPECT_FALSE(bad_points.response.success);
+  EXPECT_NE(bad_points.response.message.find("a list under 'points:'"), std::string::npos)
+      << bad_points.response.message;
 
   LoadModel without = with_regions;
   without.request.regions_uri = "";
+  without.request.points_uri = "";
   ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", without));
   ASSERT_TRUE(without.response.success) << without.response.message;
-  EXPECT_TRUE(callInspect(request).report.regions.empty());
+  const InspectionReport plain = callInspect(request).report;
+  EXPECT_TRUE(plain.regions.empty());
+  EXPECT_TRUE(plain.comparison_points.empty());
 }
 
 // Provider node of `service` according to the master, "" if none.

@@ -571,6 +571,83 @@ TEST(Cli, RegionsFileJudgesEachRegionWithItsOwnBand) {
   EXPECT_NE(missing.err.find("no_such_regions.yaml"), std::string::npos) << missing.err;
 }
 
+// Comparison points on the sample at its true pose (noise σ 0.02 mm): two CAD vertices read
+// about nothing and pass, one held to ±0.1 µm fails the part; the JSON, the CSV table and the HTML
+// report list each. A bad points file: exit 2, one line naming it.
+TEST(Cli, ComparisonPointsAreReadJudgedAndReported) {
+  const std::string points = temp("points.yaml");
+  // Vertices of blade_fine.stl (mm) in metres, as --cad-scale 0.001 reads them.
+  const Eigen::Vector3d span_25 =
+      Eigen::Vector3d(-9.51298713684082f, 2.975978374481201f, 24.526315689086914f) * 0.001;
+  const Eigen::Vector3d tip =
+      Eigen::Vector3d(-2.507793664932251f, 0.5361624956130982f, 128.73684692382812f) * 0.001;
+  const auto list = [](const Eigen::Vector3d& p) {
+    char text[128];
+    std::snprintf(text, sizeof(text), "[%.17g, %.17g, %.17g]", p.x(), p.y(), p.z());
+    return std::string(text);
+  };
+  std::ofstream(points) << "points:\n"
+                           "  - name: span_25\n"
+                           "    position: "
+                        << list(span_25)
+                        << "\n"
+                           "  - name: tip\n"
+                           "    position: "
+                        << list(tip)
+                        << "\n"
+                           "    radius: 0.003\n"
+                           "  - name: tight\n"
+                           "    position: "
+                        << list(tip)
+                        << "\n"
+                           "    radius: 0.003\n"
+                           "    tolerance: {upper: 0.0000001, lower: -0.0000001}\n";
+  const std::string csv = temp("points_csv");
+  const std::string html = temp("points.html");
+  const std::string args = "--cad " + kBladeFine + " --cad-scale 0.001 --scan " + kScan +
+                           " --tolerance 0.0002 --initial-pose " + poseArgument(sampleTruth());
+  const CliRun run = runCli(args + " --points " + points + " --csv " + csv + " --html " + html);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  ASSERT_EQ(json["comparison_points"].size(), 3u);
+  for (int p = 0; p < 2; ++p) {
+    const nlohmann::json& point = json["comparison_points"][p];
+    EXPECT_EQ(point["verdict"], "PASS") << point["verdict_reason"];
+    EXPECT_LT(point["off_surface"].get<double>(), 1e-9);
+    EXPECT_GE(point["points"].get<std::size_t>(), 3u);
+    EXPECT_LT(std::abs(point["deviation"].get<double>()), 2e-5);  // σ / √n and the pose
+    EXPECT_EQ(point["tolerance"]["upper"], 0.0002);
+  }
+  EXPECT_EQ(json["comparison_points"][1]["radius"], 0.003);
+  const nlohmann::json& tight = json["comparison_points"][2];
+  EXPECT_EQ(tight["verdict"], "FAIL");
+  EXPECT_EQ(tight["deviation"], json["comparison_points"][1]["deviation"]);  // the same place
+  EXPECT_EQ(json["verdict"], "FAIL");
+  EXPECT_NE(json["verdict_reason"].get<std::string>().find("comparison point 'tight' fails"),
+            std::string::npos)
+      << json["verdict_reason"];
+  namespace rt = freeform_inspection::report_test;
+  const auto rows = rt::csvRows(slurp(csv + "/points.csv"));
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].at("name"), "span_25");
+  EXPECT_EQ(rows[2].at("verdict"), "FAIL");
+  EXPECT_NEAR(std::stod(rows[0].at("deviation_mm")),
+              json["comparison_points"][0]["deviation"].get<double>() * 1e3,
+              1e-4);
+  EXPECT_NEAR(std::stod(rows[0].at("nominal_z_mm")), span_25.z() * 1e3, 1e-4);
+  const std::string page = slurp(html);
+  EXPECT_NE(page.find("<h2>Comparison points</h2>"), std::string::npos);
+  EXPECT_NE(page.find("<tr><th>tight</th><td>FAIL</td>"), std::string::npos);
+
+  std::ofstream(points) << "points:\n  - {name: a, position: [0, 0, 0], radios: 0.001}\n";
+  const CliRun bad = runCli(args + " --points " + points);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_TRUE(bad.out.empty());
+  EXPECT_EQ(lineCount(bad.err), 1) << bad.err;
+  EXPECT_NE(bad.err.find(points), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("unknown key 'radios'"), std::string::npos) << bad.err;
+}
+
 // The sample scan is of the fine blade; blade.stl samples its superellipse platform half as
 // densely, and its facets there lie up to 0.83 mm inside the exact outline (chord_error_test).
 // Against it a good part fails with four bumps at the platform's ends; the result says that

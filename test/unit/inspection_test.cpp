@@ -5,6 +5,7 @@
 // Noise σ is a share of the CAD diagonal L; tolerances are multiples of σ.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -339,6 +340,98 @@ TEST(Inspection, NamedRegionsAreJudgedWithTheirOwnBands) {
   EXPECT_EQ(uncovered.verdict, Verdict::kNotEvaluated);
   EXPECT_NE(uncovered.verdict_reason.find("region 'elsewhere'"), std::string::npos)
       << uncovered.verdict_reason;
+}
+
+// Comparison points (comparison_points.h) on a dented blade, registered from scratch: one at the
+// dent's centre reads its depth, one on the same face 3 dent radii away reads about nothing, and
+// each is judged against its own band; a point outside its band fails a part that would pass,
+// one the scan does not show (placed 1000x too far: millimetres read as metres) leaves it not
+// evaluated; a scan that does not register reports every point, not evaluated.
+TEST(Inspection, ComparisonPointsReadTheDeviationWhereTheyLie) {
+  const double sigma = 0.0005 * diagonal();
+  const double depth = -20.0 * sigma;
+  SyntheticScan dented = makeCase(3, 0.0005, false);
+  const SurfaceDefect dent = pressDent(&dented, 0.03, depth);
+  // A place on the dented face three dent radii from its centre, where the scan has points.
+  const Eigen::Vector3d facing = blade().query().closest(dent.centre).normal;
+  Eigen::Vector3d away = dent.centre;
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& p : dented.scan.points) {
+    const ClosestPoint on = blade().query().closest(dented.T_cad_scan * p);
+    const double off = std::abs((on.point - dent.centre).norm() - 3.0 * dent.radius);
+    if (on.normal.dot(facing) > 0.9 && off < best) {
+      best = off;
+      away = on.point;
+    }
+  }
+  ComparisonPointConfig at_dent;
+  at_dent.name = "dent";
+  at_dent.position = dent.centre;
+  at_dent.radius = 0.2 * dent.radius;
+  ComparisonPointConfig beside;
+  beside.name = "beside";
+  beside.position = away;
+  beside.has_tolerance = true;
+  beside.tolerance = {2.0 * sigma, -2.0 * sigma};
+
+  PipelineConfig config = withBand(30.0 * sigma);  // the dent passes the surface's band
+  config.comparison_points = {at_dent, beside};
+  const InspectionResult result = inspect(blade(), dented.scan, config);
+  ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+  ASSERT_EQ(result.comparison_points.size(), 2u);
+  const ComparisonPointResult& read_dent = result.comparison_points[0];
+  const ComparisonPointResult& read_beside = result.comparison_points[1];
+  std::printf("  dent %.4g mm (depth %.4g mm, %zu points), beside %.4g mm (%zu points)\n",
+              read_dent.deviation * 1e3,
+              depth * 1e3,
+              read_dent.points,
+              read_beside.deviation * 1e3,
+              read_beside.points);
+  // The cap is flat to 4 % of its depth within 0.2 of its radius; the noise averages down.
+  EXPECT_NEAR(read_dent.deviation, depth, 0.1 * std::abs(depth));
+  EXPECT_GE(read_dent.points, 10u);
+  EXPECT_EQ(read_dent.verdict, Verdict::kPass) << read_dent.verdict_reason;  // the part's ±30 σ
+  EXPECT_DOUBLE_EQ(read_dent.tolerance.upper, 30.0 * sigma);
+  EXPECT_NEAR(read_beside.deviation, 0.0, 1.0 * sigma);
+  EXPECT_EQ(read_beside.verdict, Verdict::kPass) << read_beside.verdict_reason;
+  EXPECT_LT(read_dent.off_surface, 1e-9);
+  EXPECT_EQ(result.verdict, Verdict::kPass) << result.verdict_reason;
+
+  // The dent's point with a band of its own that the dent leaves: the part fails by it.
+  config.comparison_points[0].has_tolerance = true;
+  config.comparison_points[0].tolerance = {5.0 * sigma, -5.0 * sigma};
+  const InspectionResult failed = inspect(blade(), dented.scan, config);
+  ASSERT_EQ(failed.comparison_points.size(), 2u);
+  EXPECT_EQ(failed.comparison_points[0].verdict, Verdict::kFail);
+  EXPECT_EQ(failed.verdict, Verdict::kFail);
+  EXPECT_NE(failed.verdict_reason.find("comparison point 'dent' fails"), std::string::npos)
+      << failed.verdict_reason;
+
+  // A point given in millimetres: not on the CAD, the part not evaluated.
+  config.comparison_points[0] = at_dent;
+  config.comparison_points[1].position = 1000.0 * away;
+  const InspectionResult misplaced = inspect(blade(), dented.scan, config);
+  ASSERT_EQ(misplaced.comparison_points.size(), 2u);
+  EXPECT_EQ(misplaced.comparison_points[1].verdict, Verdict::kNotEvaluated);
+  EXPECT_EQ(misplaced.verdict, Verdict::kNotEvaluated);
+  EXPECT_NE(misplaced.verdict_reason.find("comparison point 'beside'"), std::string::npos)
+      << misplaced.verdict_reason;
+  EXPECT_NE(misplaced.verdict_reason.find("off the CAD surface"), std::string::npos);
+
+  // No pose: every point reported by name, not evaluated.
+  Scan few;
+  for (int i = 0; i < 60; ++i) {
+    few.points.emplace_back(0.001 * i, 0.0005 * (i % 7), 0.0003 * (i % 5));
+  }
+  const InspectionResult unposed = inspect(blade(), few, config);
+  EXPECT_NE(unposed.registration, RegistrationStatus::kOk);
+  ASSERT_EQ(unposed.comparison_points.size(), 2u);
+  EXPECT_EQ(unposed.comparison_points[0].name, "dent");
+  for (const ComparisonPointResult& point : unposed.comparison_points) {
+    EXPECT_EQ(point.verdict, Verdict::kNotEvaluated);
+    EXPECT_FALSE(point.measured());
+    EXPECT_NE(point.verdict_reason.find("the part is not"), std::string::npos);
+  }
 }
 
 // Stock left for a later operation on the blade's root (the CAD below z = 20 mm): its faces that

@@ -491,8 +491,23 @@ TEST(CsvTables, HoldTheReportInMillimetresOneRowPerItem) {
   root.defects = 1;
   result.regions = {root};
   result.defects.front().region = 0;
+  fi::ComparisonPointResult station;
+  station.name = "LE, 50 %";
+  station.nominal = {0.0125, -0.003, 0.0593};
+  station.normal = {0.0, 1.0, 0.0};
+  station.radius = 0.0016;
+  station.tolerance = {0.00005, -0.00005};
+  station.points = 14;
+  station.deviation = 0.0000612;
+  station.spread = 0.000018;
+  station.verdict = fi::Verdict::kFail;
+  station.verdict_reason = "deviation 0.0612 mm outside its band";
+  fi::ComparisonPointResult unseen;  // not placed, not measured
+  unseen.name = "TE";
+  unseen.verdict_reason = "not evaluated: no CAD surface to place it on";
+  result.comparison_points = {station, unseen};
   const std::vector<fi::CsvTable> tables = fi::renderCsvTables(result, config, provenance());
-  ASSERT_EQ(tables.size(), 4u);
+  ASSERT_EQ(tables.size(), 5u);
 
   const auto summary = csvRows(tables, "summary.csv");
   ASSERT_EQ(summary.size(), 1u);
@@ -532,6 +547,25 @@ TEST(CsvTables, HoldTheReportInMillimetresOneRowPerItem) {
   EXPECT_EQ(regions[0].at("verdict"), "FAIL");
   EXPECT_EQ(regions[0].at("coverage"), "0.500000");
   EXPECT_EQ(regions[0].at("defects"), "1");
+
+  const auto points = csvRows(tables, "points.csv");
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[0].at("name"), station.name) << "a comma, quoted";
+  EXPECT_EQ(points[0].at("verdict"), "FAIL");
+  EXPECT_EQ(points[0].at("deviation_mm"), "0.0612");
+  EXPECT_EQ(points[0].at("lower_mm"), "-0.0500");
+  EXPECT_EQ(points[0].at("points"), "14");
+  EXPECT_EQ(points[0].at("spread_mm"), "0.0180");
+  EXPECT_EQ(points[0].at("nominal_x_mm"), "12.5000");
+  EXPECT_EQ(points[0].at("nominal_z_mm"), "59.3000");
+  EXPECT_EQ(points[0].at("radius_mm"), "1.6000");
+  EXPECT_EQ(points[1].at("verdict"), "NOT_EVALUATED");
+  EXPECT_EQ(points[1].at("deviation_mm"), "") << "unknown, not zero";
+  EXPECT_EQ(points[1].at("nominal_x_mm"), "");
+  EXPECT_EQ(points[1].at("verdict_reason"), unseen.verdict_reason);
+  const std::string html = fi::renderHtmlReport(result, config, provenance());
+  EXPECT_NE(html.find("<h2>Comparison points</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><th>LE, 50 %</th><td>FAIL</td>"), std::string::npos);
 }
 
 TEST(CsvTables, NothingMeasuredLeavesTheNumbersEmptyAndTheHeadersInPlace) {
@@ -548,7 +582,7 @@ TEST(CsvTables, NothingMeasuredLeavesTheNumbersEmptyAndTheHeadersInPlace) {
   EXPECT_EQ(summary[0].at("mean_mm"), "") << "not a perfect part's zero";
   EXPECT_EQ(summary[0].at("coverage"), "");
   EXPECT_EQ(summary[0].at("points_evaluated"), "0");
-  for (const char* file : {"defects.csv", "histogram.csv", "regions.csv"}) {
+  for (const char* file : {"defects.csv", "histogram.csv", "regions.csv", "points.csv"}) {
     EXPECT_TRUE(csvRows(tables, file).empty()) << file;
   }
   for (const fi::CsvTable& table : tables) {

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "freeform_inspection/deviation.h"
+#include "freeform_inspection/regions.h"
+#include "freeform_inspection/types.h"
+
+/// @file comparison_points.h
+/// Comparison points (docs/inspection.md, "Comparison points"): named places on the CAD surface
+/// where the drawing asks for the deviation itself (a leading-edge station, a datum pad), each
+/// read from the scan points around it and judged against a band of its own or of the surface
+/// there. A comparison point the scan does not show leaves the part NOT_EVALUATED, one outside
+/// its band fails it.
+
+namespace freeform_inspection {
+
+class MeshQuery;
+
+/// One named place and how it is judged.
+struct ComparisonPointConfig {
+  std::string name;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< [m] CAD frame, on (or by) the surface
+  /// Its own band; when false, the band of the surface there (its region's, or the part's).
+  bool has_tolerance = false;
+  ToleranceConfig tolerance;
+  /// [m] Scan points whose foot on the CAD lies within this distance of the place are read;
+  /// 0: the model's surface-graph cell (0.6 r_1, about 1 % of the CAD's diagonal).
+  double radius = 0.0;
+};
+
+/// What the scan shows at one comparison point.
+struct ComparisonPointResult {
+  std::string name;
+  /// [m] The configured place moved onto the CAD surface (its closest point there), and the
+  /// outward normal the deviation is measured along.
+  Eigen::Vector3d nominal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double off_surface = 0.0;   ///< [m] how far the configured place lies from the CAD surface
+  double radius = 0.0;        ///< [m] the radius read
+  ToleranceConfig tolerance;  ///< the band it is judged against
+  /// Scan points read, their median signed deviation (NaN when fewer than
+  /// kMinComparisonPoints) and the spread of their deviations (standard deviation).
+  std::size_t points = 0;
+  double deviation = std::numeric_limits<double>::quiet_NaN();  ///< [m]
+  double spread = std::numeric_limits<double>::quiet_NaN();     ///< [m]
+  Verdict verdict = Verdict::kNotEvaluated;
+  std::string verdict_reason;
+  bool measured() const { return points > 0 && deviation == deviation; }
+};
+
+/// Fewer scan points than this around a comparison point: not measured.
+constexpr std::size_t kMinComparisonPoints = 3;
+/// A configured place farther than this many radii from the CAD surface is refused (not
+/// measured): a place in millimetres or in another frame.
+constexpr double kMaxOffSurfaceRadii = 5.0;
+
+/// @brief One message per invalid field of each point (named by its name or position); empty
+/// when valid. Names must be unique and non-empty, positions finite, radii finite and ≥ 0.
+std::vector<std::string> validate(const std::vector<ComparisonPointConfig>& points);
+
+/// Result of reading a comparison points file.
+struct ComparisonPointsLoadResult {
+  Status status;  ///< kInvalidInput naming every bad or unknown key
+  std::vector<ComparisonPointConfig> points;
+};
+
+/// @brief Reads comparison points from YAML: a top-level `points:` list of maps with `name`,
+/// `position: [x, y, z]` (metres in the CAD frame), optional `tolerance: {upper, lower}` and
+/// `radius` (metres). Unknown keys are errors, as in the configuration file.
+ComparisonPointsLoadResult parseComparisonPoints(const std::string& yaml_text);
+
+/// @brief parseComparisonPoints() of a file; an unreadable file is kInvalidInput naming it.
+ComparisonPointsLoadResult loadComparisonPointsFile(const std::string& path);
+
+/// @brief Reads each comparison point from the deviation map: the median signed deviation of
+/// the scan points (`map`, CAD frame) whose foot on the CAD surface lies within the radius of
+/// the place's closest point on it. The foot of a point is taken as the point moved back along
+/// the place's normal by its own deviation, so a point of a wall's far side, or of a surface
+/// beyond an edge, is not read. A point without a band of its own takes the band of the surface
+/// at its nominal place: its region's (`regions`), else `part_tolerance`. Verdicts are left to
+/// judgeComparisonPoint().
+std::vector<ComparisonPointResult> readComparisonPoints(
+    const std::vector<ComparisonPointConfig>& points,
+    const std::vector<RegionConfig>& regions,
+    const ToleranceConfig& part_tolerance,
+    const MeshQuery& cad,
+    const DeviationMap& map,
+    double default_radius);
+
+/// @brief The verdict of one measured point: PASS inside its band, FAIL outside it; with a
+/// measurement uncertainty U > 0 (ISO 14253-1), PASS only inside the band narrowed by U, FAIL
+/// only outside the band widened by U, NOT_EVALUATED between them. Not measured: NOT_EVALUATED.
+void judgeComparisonPoint(double measurement_uncertainty, ComparisonPointResult* point);
+
+}  // namespace freeform_inspection

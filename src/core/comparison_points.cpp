@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "freeform_inspection/comparison_points.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include "median_internal.h"
+#include "pipeline_internal.h"
+#include "yaml_file_internal.h"
+#include <yaml-cpp/yaml.h>
+
+#include "freeform_inspection/mesh_query.h"
+
+namespace freeform_inspection {
+namespace {
+
+// "comparison point 'LE_1'" or, before a name is known, "comparison point 2".
+std::string label(const ComparisonPointConfig& point, std::size_t position) {
+  return point.name.empty() ? "comparison point " + std::to_string(position + 1)
+                            : "comparison point '" + point.name + "'";
+}
+
+ComparisonPointConfig parsePoint(const YAML::Node& node, std::size_t position) {
+  ComparisonPointConfig point;
+  const std::string what = "comparison point " + std::to_string(position + 1);
+  if (!node.IsMap()) {
+    throw std::runtime_error(what + " must be a map with name and position");
+  }
+  internal::checkKeys(node, {"name", "position", "tolerance", "radius"}, what);
+  if (node["name"]) {
+    point.name = node["name"].as<std::string>();
+  }
+  const std::string named = label(point, position);
+  const YAML::Node place = node["position"];
+  if (!place || !place.IsSequence() || place.size() != 3) {
+    throw std::runtime_error(named + ": position must be a list of three numbers [m]");
+  }
+  point.position = {place[0].as<double>(), place[1].as<double>(), place[2].as<double>()};
+  if (const YAML::Node tolerance = node["tolerance"]) {
+    point.has_tolerance = true;
+    point.tolerance = internal::parseTolerance(tolerance, named);
+  }
+  if (node["radius"]) {
+    point.radius = node["radius"].as<double>();
+  }
+  return point;
+}
+
+double standardDeviation(const std::vector<double>& values) {
+  double mean = 0.0;
+  for (const double v : values) {
+    mean += v;
+  }
+  mean /= static_cast<double>(values.size());
+  double squares = 0.0;
+  for (const double v : values) {
+    squares += (v - mean) * (v - mean);
+  }
+  return std::sqrt(squares / static_cast<double>(values.size()));
+}
+
+}  // namespace
+
+std::vector<std::string> validate(const std::vector<ComparisonPointConfig>& points) {
+  std::vector<std::string> errors;
+  std::set<std::string> names;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const ComparisonPointConfig& point = points[p];
+    const std::string named = label(point, p);
+    if (point.name.empty()) {
+      errors.push_back(named + " needs a name");
+    } else if (!names.insert(point.name).second) {
+      errors.push_back(named + " is named twice");
+    }
+    if (!point.position.allFinite()) {
+      errors.push_back(named + ": position must be finite (m)");
+    }
+    if (!(point.radius >= 0.0) || !std::isfinite(point.radius)) {
+      errors.push_back(named + ": radius must be finite and ≥ 0 (m; 0 = the model's cell)");
+    }
+    if (point.has_tolerance) {
+      for (const std::string& message : validate(point.tolerance)) {
+        errors.push_back(named + ": " + message);
+      }
+    }
+  }
+  return errors;
+}
+
+ComparisonPointsLoadResult parseComparisonPoints(const std::string& yaml_text) {
+  ComparisonPointsLoadResult result;
+  result.status = internal::parseYamlList(
+      yaml_text,
+      "points",
+      "comparison points",
+      parsePoint,
+      [](const auto& items) { return validate(items); },
+      &result.points);
+  return result;
+}
+
+ComparisonPointsLoadResult loadComparisonPointsFile(const std::string& path) {
+  return internal::parseYamlFile<ComparisonPointsLoadResult>(
+      path, "comparison points", parseComparisonPoints);
+}
+
+std::vector<ComparisonPointResult> readComparisonPoints(
+    const std::vector<ComparisonPointConfig>& points,
+    const std::vector<RegionConfig>& regions,
+    const ToleranceConfig& part_tolerance,
+    const MeshQuery& cad,
+    const DeviationMap& map,
+    double default_radius) {
+  std::vector<ComparisonPointResult> results;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const ComparisonPointConfig& config = points[p];
+    ComparisonPointResult result;
+    result.name = config.name;
+    result.tolerance = config.tolerance;
+    result.radius = config.radius > 0.0 ? config.radius : default_radius;
+    const ClosestPoint closest = cad.closest(config.position);
+    if (!closest.found) {
+      result.verdict_reason = "not evaluated: no CAD surface to place it on";
+      results.push_back(result);
+      continue;
+    }
+    result.nominal = closest.point;
+    result.normal = closest.normal;
+    result.off_surface = closest.distance;
+    if (!config.has_tolerance) {
+      const int region = regionOf(regions, {closest.point}).front();
+      result.tolerance = regionTolerance(regions, region, part_tolerance);
+    }
+    if (result.off_surface > kMaxOffSurfaceRadii * result.radius) {
+      result.verdict_reason = "not evaluated: its position lies " +
+                              internal::formatLength(result.off_surface) +
+                              " off the CAD surface (a position in other units or another frame?)";
+      results.push_back(result);
+      continue;
+    }
+    // A point's foot: the point moved back along the normal by its own deviation. It lies
+    // within the radius of the nominal for the points of this surface around it, not for those
+    // of a wall's far side or of a surface beyond an edge.
+    const double r2 = result.radius * result.radius;
+    std::vector<double> read;
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      const double d = static_cast<double>(map.deviation[i]);
+      if (!std::isfinite(d)) {
+        continue;
+      }
+      const Eigen::Vector3d foot = map.points[i] - d * result.normal;
+      if ((foot - result.nominal).squaredNorm() <= r2) {
+        read.push_back(d);
+      }
+    }
+    result.points = read.size();
+    if (read.size() < kMinComparisonPoints) {
+      result.verdict_reason = "not evaluated: " + std::to_string(read.size()) +
+                              " scan point(s) within " + internal::formatLength(result.radius) +
+                              " of it, " + std::to_string(kMinComparisonPoints) + " needed";
+      results.push_back(result);
+      continue;
+    }
+    result.spread = standardDeviation(read);
+    result.deviation = internal::median(std::move(read));
+    results.push_back(result);
+  }
+  return results;
+}
+
+void judgeComparisonPoint(double measurement_uncertainty, ComparisonPointResult* point) {
+  if (!point->measured()) {
+    point->verdict = Verdict::kNotEvaluated;
+    return;
+  }
+  const double u = std::max(0.0, measurement_uncertainty);
+  const double d = point->deviation;
+  const ToleranceConfig& band = point->tolerance;
+  const std::string text = internal::formatLength(d);
+  const std::string limits =
+      "[" + internal::formatLength(band.lower) + ", " + internal::formatLength(band.upper) + "]";
+  if (d < band.lower - u || d > band.upper + u) {
+    point->verdict = Verdict::kFail;
+    point->verdict_reason = "deviation " + text + " outside its band " + limits +
+                            (u > 0.0 ? " widened by the measurement uncertainty" : "");
+  } else if (d < band.lower + u || d > band.upper - u) {
+    point->verdict = Verdict::kNotEvaluated;
+    point->verdict_reason = "not evaluated: deviation " + text + " inside its band " + limits +
+                            " but within the measurement uncertainty of a limit (ISO 14253-1)";
+  } else {
+    point->verdict = Verdict::kPass;
+    point->verdict_reason = "deviation " + text + " inside its band " + limits;
+  }
+}
+
+}  // namespace freeform_inspection
