@@ -34,11 +34,16 @@ struct ComparisonPointConfig {
   /// [m] Scan points whose foot on the CAD lies within this distance of the place are read;
   /// 0: the model's surface-graph cell (0.6 r_1, about 1 % of the CAD's diagonal).
   double radius = 0.0;
+  /// The datum this point is a target of ("A", "B", ...; datum_alignment.h), empty for none.
+  /// With six or more targets the deviation is measured in the frame the datum targets fix
+  /// (3-2-1, RPS) instead of the best fit's.
+  std::string datum;
 };
 
 /// What the scan shows at one comparison point.
 struct ComparisonPointResult {
   std::string name;
+  std::string datum;  ///< ComparisonPointConfig::datum
   /// [m] The configured place moved onto the CAD surface (its closest point there), and the
   /// outward normal the deviation is measured along.
   Eigen::Vector3d nominal = Eigen::Vector3d::Zero();
@@ -61,6 +66,39 @@ constexpr std::size_t kMinComparisonPoints = 3;
 /// A configured place farther than this many radii from the CAD surface is refused (not
 /// measured): a place in millimetres or in another frame.
 constexpr double kMaxOffSurfaceRadii = 5.0;
+
+/// Where a comparison point lies on the CAD (placeComparisonPoint()).
+struct PlacedPoint {
+  bool found = false;                                 ///< false: no CAD surface to place it on
+  Eigen::Vector3d nominal = Eigen::Vector3d::Zero();  ///< [m] closest point on the CAD surface
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();   ///< outward CAD normal there
+  double off_surface = 0.0;                           ///< [m] from the configured position
+  double radius = 0.0;                                ///< [m] the radius read
+  /// false when the position lies more than kMaxOffSurfaceRadii radii off the surface
+  bool near_surface() const { return found && off_surface <= kMaxOffSurfaceRadii * radius; }
+};
+
+/// @brief The configured position moved onto the CAD surface, and the radius read there (the
+/// point's own, else `default_radius`).
+PlacedPoint placeComparisonPoint(const ComparisonPointConfig& point,
+                                 const MeshQuery& cad,
+                                 double default_radius);
+
+/// What the scan shows around one place.
+struct PlaceReading {
+  std::size_t points = 0;                                       ///< scan points read
+  double deviation = std::numeric_limits<double>::quiet_NaN();  ///< [m] their median
+  double spread = std::numeric_limits<double>::quiet_NaN();     ///< [m] standard deviation
+  bool measured() const { return points >= kMinComparisonPoints; }
+};
+
+/// @brief The scan points (CAD frame, with their signed `deviation`, NaN unmatched) whose foot
+/// lies within the place's radius: a point's foot is the point moved back along the place's
+/// normal by its own deviation, so a point of a wall's far side, or of a surface beyond an edge,
+/// is not read. Median and spread only when kMinComparisonPoints or more are read.
+PlaceReading readAround(const PlacedPoint& place,
+                        const Points& points_cad,
+                        const std::vector<float>& deviation);
 
 /// @brief One message per invalid field of each point (named by its name or position); empty
 /// when valid. Names must be unique and non-empty, positions finite, radii finite and ≥ 0.

@@ -12,6 +12,7 @@
 
 #include "freeform_inspection/comparison_points.h"
 #include "freeform_inspection/correspondence.h"
+#include "freeform_inspection/datum_alignment.h"
 #include "freeform_inspection/defects.h"
 #include "freeform_inspection/descriptor.h"
 #include "freeform_inspection/deviation.h"
@@ -179,6 +180,9 @@ struct InspectionResult {
   ConformanceZones conformance;  ///< the guard bands' decision (verdict.measurement_uncertainty)
   /// One per configured comparison point, in the configuration's order (comparison_points.h).
   std::vector<ComparisonPointResult> comparison_points;
+  /// The frame the comparison points' datum targets fix (datum_alignment.h), when some point
+  /// names a datum: `T_cad_scan` is then its pose, and the registration's best fit is kept here.
+  DatumAlignment datum_alignment;
   DeviationMap deviation_map;  ///< per scan point, CAD frame (empty when failed)
   Triangles scan_faces;        ///< the cleaned scan's triangles (indices into the map)
   InspectionCounts counts;

@@ -29,7 +29,7 @@ ComparisonPointConfig parsePoint(const YAML::Node& node, std::size_t position) {
   if (!node.IsMap()) {
     throw std::runtime_error(what + " must be a map with name and position");
   }
-  internal::checkKeys(node, {"name", "position", "tolerance", "radius"}, what);
+  internal::checkKeys(node, {"name", "position", "tolerance", "radius", "datum"}, what);
   if (node["name"]) {
     point.name = node["name"].as<std::string>();
   }
@@ -45,6 +45,12 @@ ComparisonPointConfig parsePoint(const YAML::Node& node, std::size_t position) {
   }
   if (node["radius"]) {
     point.radius = node["radius"].as<double>();
+  }
+  if (node["datum"]) {
+    point.datum = node["datum"].as<std::string>();
+    if (point.datum.empty()) {
+      throw std::runtime_error(named + ": datum must name a datum (A, B, ...) when given");
+    }
   }
   return point;
 }
@@ -107,6 +113,45 @@ ComparisonPointsLoadResult loadComparisonPointsFile(const std::string& path) {
       path, "comparison points", parseComparisonPoints);
 }
 
+PlacedPoint placeComparisonPoint(const ComparisonPointConfig& point,
+                                 const MeshQuery& cad,
+                                 double default_radius) {
+  PlacedPoint place;
+  place.radius = point.radius > 0.0 ? point.radius : default_radius;
+  const ClosestPoint closest = cad.closest(point.position);
+  if (closest.found) {
+    place.found = true;
+    place.nominal = closest.point;
+    place.normal = closest.normal;
+    place.off_surface = closest.distance;
+  }
+  return place;
+}
+
+PlaceReading readAround(const PlacedPoint& place,
+                        const Points& points_cad,
+                        const std::vector<float>& deviation) {
+  const double r2 = place.radius * place.radius;
+  std::vector<double> read;
+  for (std::size_t i = 0; i < points_cad.size() && i < deviation.size(); ++i) {
+    const double d = static_cast<double>(deviation[i]);
+    if (!std::isfinite(d)) {
+      continue;
+    }
+    const Eigen::Vector3d foot = points_cad[i] - d * place.normal;
+    if ((foot - place.nominal).squaredNorm() <= r2) {
+      read.push_back(d);
+    }
+  }
+  PlaceReading reading;
+  reading.points = read.size();
+  if (reading.measured()) {
+    reading.spread = standardDeviation(read);
+    reading.deviation = internal::median(std::move(read));
+  }
+  return reading;
+}
+
 std::vector<ComparisonPointResult> readComparisonPoints(
     const std::vector<ComparisonPointConfig>& points,
     const std::vector<RegionConfig>& regions,
@@ -115,57 +160,43 @@ std::vector<ComparisonPointResult> readComparisonPoints(
     const DeviationMap& map,
     double default_radius) {
   std::vector<ComparisonPointResult> results;
-  for (std::size_t p = 0; p < points.size(); ++p) {
-    const ComparisonPointConfig& config = points[p];
+  for (const ComparisonPointConfig& config : points) {
     ComparisonPointResult result;
     result.name = config.name;
+    result.datum = config.datum;
     result.tolerance = config.tolerance;
-    result.radius = config.radius > 0.0 ? config.radius : default_radius;
-    const ClosestPoint closest = cad.closest(config.position);
-    if (!closest.found) {
+    const PlacedPoint place = placeComparisonPoint(config, cad, default_radius);
+    result.radius = place.radius;
+    if (!place.found) {
       result.verdict_reason = "not evaluated: no CAD surface to place it on";
       results.push_back(result);
       continue;
     }
-    result.nominal = closest.point;
-    result.normal = closest.normal;
-    result.off_surface = closest.distance;
+    result.nominal = place.nominal;
+    result.normal = place.normal;
+    result.off_surface = place.off_surface;
     if (!config.has_tolerance) {
-      const int region = regionOf(regions, {closest.point}).front();
+      const int region = regionOf(regions, {place.nominal}).front();
       result.tolerance = regionTolerance(regions, region, part_tolerance);
     }
-    if (result.off_surface > kMaxOffSurfaceRadii * result.radius) {
+    if (!place.near_surface()) {
       result.verdict_reason = "not evaluated: its position lies " +
                               internal::formatLength(result.off_surface) +
                               " off the CAD surface (a position in other units or another frame?)";
       results.push_back(result);
       continue;
     }
-    // A point's foot: the point moved back along the normal by its own deviation. It lies
-    // within the radius of the nominal for the points of this surface around it, not for those
-    // of a wall's far side or of a surface beyond an edge.
-    const double r2 = result.radius * result.radius;
-    std::vector<double> read;
-    for (std::size_t i = 0; i < map.size(); ++i) {
-      const double d = static_cast<double>(map.deviation[i]);
-      if (!std::isfinite(d)) {
-        continue;
-      }
-      const Eigen::Vector3d foot = map.points[i] - d * result.normal;
-      if ((foot - result.nominal).squaredNorm() <= r2) {
-        read.push_back(d);
-      }
-    }
-    result.points = read.size();
-    if (read.size() < kMinComparisonPoints) {
-      result.verdict_reason = "not evaluated: " + std::to_string(read.size()) +
+    const PlaceReading reading = readAround(place, map.points, map.deviation);
+    result.points = reading.points;
+    if (!reading.measured()) {
+      result.verdict_reason = "not evaluated: " + std::to_string(reading.points) +
                               " scan point(s) within " + internal::formatLength(result.radius) +
                               " of it, " + std::to_string(kMinComparisonPoints) + " needed";
       results.push_back(result);
       continue;
     }
-    result.spread = standardDeviation(read);
-    result.deviation = internal::median(std::move(read));
+    result.spread = reading.spread;
+    result.deviation = reading.deviation;
     results.push_back(result);
   }
   return results;

@@ -267,12 +267,15 @@ void measurePart(const Model& model,
       summarizeRegions(model, config, map, bands, covered, cell_region, result->defects);
   result->conformance = conformanceZones(judged, surface, bands, config, &result->regions);
   noteChordError(model, map, distances.faces, config, result);
-  result->comparison_points = readComparisonPoints(config.comparison_points,
-                                                   config.regions,
-                                                   config.tolerance,
-                                                   model.query(),
-                                                   map,
-                                                   model.cellSize());
+  // Read only where they will be judged (judgeComparisonPoints lists the rest as not evaluated).
+  if (judgedPose(*result)) {
+    result->comparison_points = readComparisonPoints(config.comparison_points,
+                                                     config.regions,
+                                                     config.tolerance,
+                                                     model.query(),
+                                                     map,
+                                                     model.cellSize());
+  }
   result->scan_faces = scan.faces;
   // A band narrower than the residual noise of the fit flags scattered points, not the part. At
   // a fixed pose the residual holds the part's offset from the pose too: the scan's own noise.
@@ -312,6 +315,12 @@ void judgePart(const PipelineConfig& config, InspectionResult* result) {
   if (result->registration == RegistrationStatus::kAmbiguous) {
     result->verdict_reason = "not evaluated: the pose is ambiguous (" + result->status.message +
                              "); the deviation shown is for the best pose";
+    return;
+  }
+  const DatumAlignment& datums = result->datum_alignment;
+  if (datums.requested && !datums.aligned) {
+    result->verdict_reason = "not evaluated: no datum alignment (" + datums.message +
+                             "); the deviation shown is the best fit's";
     return;
   }
   if (stats.evaluated == 0) {
@@ -354,16 +363,15 @@ void judgePart(const PipelineConfig& config, InspectionResult* result) {
 // Each comparison point's verdict; one that fails fails the part, one not shown or within the
 // measurement uncertainty of a limit leaves a part that would pass not evaluated.
 void judgeComparisonPoints(const PipelineConfig& config, InspectionResult* result) {
-  const bool posed = result->status.code != StatusCode::kCancelled &&
-                     (result->registration == RegistrationStatus::kOk ||
-                      result->registration == RegistrationStatus::kFixed) &&
-                     result->comparison_points.size() == config.comparison_points.size();
+  const bool posed =
+      judgedPose(*result) && result->comparison_points.size() == config.comparison_points.size();
   if (!posed) {
     const std::string why = "not evaluated: the part is not (" + result->verdict_reason + ")";
     result->comparison_points.clear();
     for (const ComparisonPointConfig& point : config.comparison_points) {
       ComparisonPointResult unread;
       unread.name = point.name;
+      unread.datum = point.datum;
       unread.tolerance = point.tolerance;
       unread.verdict_reason = why;
       result->comparison_points.push_back(unread);
@@ -387,14 +395,25 @@ void judgeComparisonPoints(const PipelineConfig& config, InspectionResult* resul
         "comparison point '" + failed->name + "' fails: " + failed->verdict_reason;
   } else if (undecided != nullptr && result->verdict == Verdict::kPass) {
     result->verdict = Verdict::kNotEvaluated;
-    const std::string prefix = "not evaluated: ";
-    const std::string& reason = undecided->verdict_reason;
-    const std::string why = reason.rfind(prefix, 0) == 0 ? reason.substr(prefix.size()) : reason;
-    result->verdict_reason = "not evaluated: comparison point '" + undecided->name + "': " + why;
+    result->verdict_reason = "not evaluated: comparison point '" + undecided->name +
+                             "': " + withoutNotEvaluated(undecided->verdict_reason);
   }
 }
 
 }  // namespace
+
+bool judgedPose(const InspectionResult& result) {
+  const bool datums_missed = result.datum_alignment.requested && !result.datum_alignment.aligned &&
+                             result.registration == RegistrationStatus::kOk;
+  return result.status.code != StatusCode::kCancelled && !datums_missed &&
+         (result.registration == RegistrationStatus::kOk ||
+          result.registration == RegistrationStatus::kFixed);
+}
+
+std::string withoutNotEvaluated(const std::string& reason) {
+  const std::string prefix = "not evaluated: ";
+  return reason.rfind(prefix, 0) == 0 ? reason.substr(prefix.size()) : reason;
+}
 
 void judge(const PipelineConfig& config, InspectionResult* result) {
   judgePart(config, result);

@@ -14,6 +14,7 @@
 #include "pipeline_internal.h"
 #include "turn_votes_internal.h"
 
+#include "freeform_inspection/datum_alignment.h"
 #include "freeform_inspection/geodesic.h"
 #include "freeform_inspection/organized_mesh.h"
 #include "freeform_inspection/scan_noise.h"
@@ -1276,6 +1277,46 @@ void registerWidening(const Model& model,
   *result = std::move(retry);
 }
 
+// The drawing's datum frame (datum_alignment.h) in place of the best fit, when comparison points
+// name datum targets. A fixed pose is the caller's datum already, and an ambiguous one has no
+// single frame to move; either way the targets are still read as comparison points.
+void alignToDatumTargets(const Model& model,
+                         const Points& points,
+                         const PipelineConfig& config,
+                         InspectionResult* result) {
+  const bool requested =
+      std::any_of(config.comparison_points.begin(),
+                  config.comparison_points.end(),
+                  [](const ComparisonPointConfig& p) { return !p.datum.empty(); });
+  if (!requested) {
+    return;
+  }
+  DatumAlignment& datums = result->datum_alignment;
+  if (result->registration != RegistrationStatus::kOk) {
+    datums.requested = true;
+    datums.T_cad_scan_best_fit = result->T_cad_scan;
+    datums.message =
+        result->registration == RegistrationStatus::kFixed
+            ? "not aligned: the fixed pose is the datum frame"
+            : "not aligned: the pose is " + std::string(toString(result->registration));
+    if (result->registration == RegistrationStatus::kFixed) {
+      result->warnings.push_back(
+          "the datum targets do not move a fixed pose (--fixed-pose, "
+          "ALIGN_FIXED): they are read as comparison points only");
+    }
+    return;
+  }
+  datums = alignToDatums(model.query(),
+                         points,
+                         result->T_cad_scan,
+                         config.comparison_points,
+                         model.cellSize(),
+                         config.deviation.max_distance_ratio * model.bounds().diagonal());
+  if (datums.aligned) {
+    result->T_cad_scan = datums.T_cad_scan;
+  }
+}
+
 // clean → descriptors → registration → deviation, stopping at the first stage that is not ok
 // or that the caller cancels.
 void runStages(const Model& model,
@@ -1376,6 +1417,7 @@ void runStages(const Model& model,
                         config,
                         result);
   }
+  alignToDatumTargets(model, points, config, result);
   measurePart(model, cleaned.scan, descriptors, config, result);
   if (alignment.mode == Alignment::Mode::kFixed) {
     result->pose_uncertainty = PoseUncertainty();  // no fit, so no spread of one

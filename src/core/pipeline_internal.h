@@ -23,6 +23,13 @@ void measurePart(const Model& model,
                  const PipelineConfig& config,
                  InspectionResult* result);
 
+/// Whether the part has a pose its verdict may be judged at: registered `ok` (and aligned to its
+/// datum targets when it has some) or the caller's fixed pose, and not cancelled.
+bool judgedPose(const InspectionResult& result);
+
+/// `reason` without a leading "not evaluated: ", to quote it in another verdict's reason.
+std::string withoutNotEvaluated(const std::string& reason);
+
 /// The part's verdict and its reason, kept apart from how sure the registration is; then each
 /// named region's (judgeRegions()).
 void judge(const PipelineConfig& config, InspectionResult* result);

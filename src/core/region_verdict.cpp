@@ -144,9 +144,7 @@ std::vector<RegionResult> summarizeRegions(const Model& model,
 }
 
 void judgeRegions(const PipelineConfig& config, InspectionResult* result) {
-  const bool posed = result->status.code != StatusCode::kCancelled &&
-                     (result->registration == RegistrationStatus::kOk ||
-                      result->registration == RegistrationStatus::kFixed);
+  const bool posed = judgedPose(*result);
   const bool with_uncertainty = result->conformance.measurement_uncertainty > 0.0;
   const RegionResult* failed = nullptr;
   const RegionResult* uncovered = nullptr;
@@ -177,8 +175,8 @@ void judgeRegions(const PipelineConfig& config, InspectionResult* result) {
     result->verdict_reason = "region '" + failed->name + "' fails: " + failed->verdict_reason;
   } else if (uncovered != nullptr && result->verdict == Verdict::kPass) {
     result->verdict = Verdict::kNotEvaluated;
-    const std::string why = uncovered->verdict_reason.substr(std::string("not evaluated: ").size());
-    result->verdict_reason = "not evaluated: region '" + uncovered->name + "': " + why;
+    result->verdict_reason = "not evaluated: region '" + uncovered->name +
+                             "': " + withoutNotEvaluated(uncovered->verdict_reason);
   }
 }
 

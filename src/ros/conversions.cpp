@@ -103,6 +103,8 @@ freeform_inspection::InspectionReport errorReport(const std::string& error_code,
   report.message = message;
   report.registration_status = fi::toString(fi::RegistrationStatus::kFailed);
   report.transform.transform.rotation.w = 1.0;
+  report.best_fit_transform.rotation.w = 1.0;
+  report.alignment = "best_fit";
   // Unknown, as the other quantities a refused request never measured say with NaN.
   report.offset_from_guess_deg = std::numeric_limits<double>::quiet_NaN();
   report.offset_from_guess = std::numeric_limits<double>::quiet_NaN();
@@ -156,6 +158,13 @@ freeform_inspection::InspectionReport toReport(const fi::InspectionResult& resul
   report.ambiguity = result.ambiguity;
   report.offset_from_guess_deg = result.offset_from_initial_deg;
   report.offset_from_guess = result.offset_from_initial;
+  const fi::DatumAlignment& datums = result.datum_alignment;
+  report.alignment = !datums.requested ? "best_fit" : datums.aligned ? "datums" : "datums_failed";
+  report.alignment_message = datums.message;
+  report.best_fit_transform =
+      tf2::eigenToTransform(
+          (datums.requested ? datums.T_cad_scan_best_fit : result.T_cad_scan).inverse())
+          .transform;
   const fi::PoseUncertainty& spread = result.pose_uncertainty;
   for (int r = 0; r < 6; ++r) {
     for (int c = 0; c < 6; ++c) {

@@ -538,6 +538,9 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
     for (auto& alternative : result.alternatives) {
       alternative = alternative * T_fixed_scan.inverse();
     }
+    fi::DatumAlignment& datums = result.datum_alignment;
+    datums.T_cad_scan_best_fit = datums.T_cad_scan_best_fit * T_fixed_scan.inverse();
+    datums.T_cad_scan = datums.T_cad_scan * T_fixed_scan.inverse();
   }
   // The core's non-fatal findings (a pose ICP moved far from the guess, a coarse CAD's chord
   // error, ...) go to rosout; the report files hold them too.

@@ -200,6 +200,7 @@ void fillDeviation(const fi::InspectionResult& result,
   for (const fi::ComparisonPointResult& point : result.comparison_points) {
     freeform_inspection::ComparisonPointReport message;
     message.name = point.name;
+    message.datum = point.datum;
     message.status = verdictCode(point.verdict);
     message.message = point.verdict_reason;
     message.nominal.x = point.nominal.x();

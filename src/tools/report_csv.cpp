@@ -205,7 +205,8 @@ std::string pointsTable(const InspectionResult& result) {
                            "nominal_z_mm",
                            "off_surface_mm",
                            "radius_mm",
-                           "verdict_reason"});
+                           "verdict_reason",
+                           "datum"});
   for (const ComparisonPointResult& p : result.comparison_points) {
     const bool placed = p.normal.squaredNorm() > 0.0;  // not placed: no position to give
     text += line({field(p.name),
@@ -220,7 +221,8 @@ std::string pointsTable(const InspectionResult& result) {
                   placed ? mm(p.nominal.z()) : "",
                   placed ? mm(p.off_surface) : "",
                   placed ? mm(p.radius) : "",
-                  field(p.verdict_reason)});
+                  field(p.verdict_reason),
+                  field(p.datum)});
   }
   return text;
 }

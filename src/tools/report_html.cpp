@@ -2,6 +2,7 @@
 // Copyright 2026 The freeform_inspection authors
 #include "report_html.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -202,7 +203,9 @@ std::string pointsSection(const std::vector<ComparisonPointResult>& points) {
                                              number(p.nominal.y() * 1e3, 2) + ", " +
                                              number(p.nominal.z() * 1e3, 2)
                                        : "&ndash;";
-    html += tableRow(escapeHtml(p.name),
+    const std::string name =
+        p.datum.empty() ? escapeHtml(p.name) : escapeHtml(p.name + " (datum " + p.datum + ")");
+    html += tableRow(name,
                      {toString(p.verdict),
                       measured ? millimetres(p.deviation) : "&ndash;",
                       millimetres(p.tolerance.lower) + " to " + millimetres(p.tolerance.upper),
@@ -210,6 +213,32 @@ std::string pointsSection(const std::vector<ComparisonPointResult>& points) {
                       measured ? millimetres(p.spread) : "&ndash;",
                       nominal,
                       escapeHtml(p.verdict_reason)});
+  }
+  return html + "</table>\n";
+}
+
+// The frame the datum targets fix: how far it lies from the best fit and what each target read
+// at both.
+std::string datumSection(const DatumAlignment& a) {
+  if (!a.requested) {
+    return "";
+  }
+  std::string html = "<h2>Datum alignment</h2>\n<p>" + escapeHtml(a.message) + "</p>\n";
+  if (a.targets.empty()) {
+    return html;
+  }
+  html +=
+      "<table class=\"defects\">\n<tr><th>target</th><th>datum</th><th>at the best fit</th>"
+      "<th>aligned</th><th>points read</th><th>nominal [mm]</th></tr>\n";
+  for (const DatumTargetReading& t : a.targets) {
+    const auto reading = [](double d) { return std::isfinite(d) ? millimetres(d) : "&ndash;"; };
+    html += tableRow(escapeHtml(t.name),
+                     {escapeHtml(t.datum),
+                      reading(t.best_fit),
+                      reading(t.aligned),
+                      std::to_string(t.points),
+                      number(t.nominal.x() * 1e3, 2) + ", " + number(t.nominal.y() * 1e3, 2) +
+                          ", " + number(t.nominal.z() * 1e3, 2)});
   }
   return html + "</table>\n";
 }
@@ -285,7 +314,8 @@ std::string renderHtmlReport(const InspectionResult& result,
          kStyle + "</head>\n<body>\n<h1>Inspection report: " + escapeHtml(part) + "</h1>\n" +
          verdictBanner(result) + provenanceSection(provenance, config_hash) +
          statisticsSection(result.deviation, config.tolerance) + regionsSection(result.regions) +
-         pointsSection(result.comparison_points) + conformanceSection(result.conformance) +
+         pointsSection(result.comparison_points) + datumSection(result.datum_alignment) +
+         conformanceSection(result.conformance) +
          mapSection(result,
                     toleranceBands(config.regions, result.deviation_map.region, config.tolerance)) +
          defectsSection(result) + registrationSection(result) + warningsSection(result.warnings) +

@@ -122,8 +122,37 @@ nlohmann::ordered_json comparisonPointsJson(const std::vector<ComparisonPointRes
                     {"spread", numberOrNull(p.spread)},
                     {"verdict", toString(p.verdict)},
                     {"verdict_reason", p.verdict_reason}});
+    if (!p.datum.empty()) {
+      list.back()["datum"] = p.datum;
+    }
   }
   return list;
+}
+
+// The frame the datum targets fix (datum_alignment.h); null when no comparison point names a
+// datum.
+nlohmann::ordered_json datumAlignmentJson(const DatumAlignment& a) {
+  if (!a.requested) {
+    return nullptr;
+  }
+  nlohmann::ordered_json targets = nlohmann::ordered_json::array();
+  for (const DatumTargetReading& t : a.targets) {
+    targets.push_back({{"name", t.name},
+                       {"datum", t.datum},
+                       {"nominal", vectorJson(t.nominal)},
+                       {"normal", vectorJson(t.normal)},
+                       {"points", t.points},
+                       {"deviation_best_fit", numberOrNull(t.best_fit)},
+                       {"deviation_aligned", numberOrNull(t.aligned)}});
+  }
+  return {{"aligned", a.aligned},
+          {"message", a.message},
+          {"transform_cad_from_scan_best_fit", matrixRows(a.T_cad_scan_best_fit)},
+          {"rotation_from_best_fit_deg", numberOrNull(a.turn_deg)},
+          {"translation_from_best_fit", numberOrNull(a.shift)},
+          {"rounds", a.rounds},
+          {"conditioning", numberOrNull(a.conditioning)},
+          {"targets", targets}};
 }
 
 // The part's pose in the scan frame, as geometry_msgs/PoseWithCovariance orders it.
@@ -203,6 +232,7 @@ nlohmann::ordered_json toJson(const InspectionResult& result) {
   json["defects"] = defectsJson(result);
   json["regions"] = regionsJson(result.regions);
   json["comparison_points"] = comparisonPointsJson(result.comparison_points);
+  json["datum_alignment"] = datumAlignmentJson(result.datum_alignment);
   json["conformance"] = conformanceJson(result.conformance);
   json["counts"] = countsJson(result.counts);
   json["timings_s"] = nlohmann::ordered_json::object();

@@ -89,6 +89,9 @@ std::vector<std::pair<std::string, std::string>> configEntries(const PipelineCon
               numberText(p.tolerance.upper) + "; ";
     }
     text += "radius " + numberText(p.radius);
+    if (!p.datum.empty()) {
+      text += "; datum " + p.datum;  // a datum target moves the frame every deviation is read in
+    }
     entries.emplace_back("points/" + p.name, text);
   }
   return entries;

@@ -444,6 +444,9 @@ TEST(InspectionNode, LoadModelWithRegionsJudgesEachRegion) {
                 1e-9);
   }
   EXPECT_EQ(report.comparison_points[2].name, "near_tip");
+  EXPECT_EQ(report.comparison_points[2].datum, "");
+  EXPECT_EQ(report.alignment, "best_fit");
+  EXPECT_EQ(report.best_fit_transform, report.transform.transform);
 
   LoadModel bad = with_regions;
   bad.request.regions_uri = "package://freeform_inspection/data/blade/no_such_regions.yaml";
@@ -467,6 +470,30 @@ TEST(InspectionNode, LoadModelWithRegionsJudgesEachRegion) {
   const InspectionReport plain = callInspect(request).report;
   EXPECT_TRUE(plain.regions.empty());
   EXPECT_TRUE(plain.comparison_points.empty());
+
+  // The six-point nest: the pose published is the frame its targets fix, a few hundredths of a
+  // degree (the readings' noise) from the best fit, which the report keeps beside it.
+  LoadModel with_datums = without;
+  with_datums.request.points_uri = "package://freeform_inspection/data/blade/blade_datums.yaml";
+  ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", with_datums));
+  ASSERT_TRUE(with_datums.response.success) << with_datums.response.message;
+  Inspect::Request usual = cloudRequest(sampleCloud());
+  usual.tolerance_upper = 0.0002;
+  usual.tolerance_lower = -0.0002;
+  const Inspect::Response datums = callInspect(usual);
+  EXPECT_EQ(datums.status, Inspect::Response::PASS) << datums.message;
+  EXPECT_EQ(datums.report.alignment, "datums") << datums.report.alignment_message;
+  ASSERT_EQ(datums.report.comparison_points.size(), 6u);
+  EXPECT_EQ(datums.report.comparison_points[5].datum, "C");
+  for (const auto& target : datums.report.comparison_points) {
+    EXPECT_LT(std::abs(target.deviation), 1e-6) << target.name;
+  }
+  const Eigen::Isometry3d found = tf2::transformToEigen(datums.report.transform.transform);
+  const Eigen::Isometry3d best = tf2::transformToEigen(datums.report.best_fit_transform);
+  const double apart = Eigen::AngleAxisd(found.linear().transpose() * best.linear()).angle();
+  EXPECT_GT(apart, 0.0);
+  EXPECT_LT(apart * 180.0 / M_PI, 0.2);
+  ASSERT_TRUE(ros::service::call(nodeName() + "/load_model", without));
 }
 
 // Provider node of `service` according to the master, "" if none.

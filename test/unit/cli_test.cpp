@@ -648,6 +648,68 @@ TEST(Cli, ComparisonPointsAreReadJudgedAndReported) {
   EXPECT_NE(bad.err.find("unknown key 'radios'"), std::string::npos) << bad.err;
 }
 
+// The shipped six-point nest (data/blade/blade_datums.yaml): the deviation is measured in the
+// frame its targets fix, which on a scan of the CAD itself lies by the readings' noise from the
+// best fit and the truth; five targets cannot fix a pose, and the part is then not evaluated.
+TEST(Cli, DatumTargetsFixTheFrameTheDeviationIsMeasuredIn) {
+  const std::string datums = std::string(FREEFORM_DATA_DIR) + "/blade/blade_datums.yaml";
+  const std::string csv = temp("datums_csv");
+  const std::string html = temp("datums.html");
+  const std::string args = "--cad " + kBladeFine + " --cad-scale 0.001 --scan " + kScan +
+                           " --tolerance 0.0002 --initial-pose " + poseArgument(sampleTruth());
+  const CliRun run = runCli(args + " --points " + datums + " --csv " + csv + " --html " + html);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["verdict"], "PASS") << json["verdict_reason"];
+  const nlohmann::json& alignment = json["datum_alignment"];
+  ASSERT_TRUE(alignment.is_object());
+  ASSERT_TRUE(alignment["aligned"].get<bool>()) << alignment["message"];
+  ASSERT_EQ(alignment["targets"].size(), 6u);
+  for (const nlohmann::json& target : alignment["targets"]) {
+    EXPECT_GE(target["points"].get<std::size_t>(), 3u) << target["name"];
+    EXPECT_LT(std::abs(target["deviation_aligned"].get<double>()), 1e-6) << target["name"];
+    EXPECT_LT(std::abs(target["deviation_best_fit"].get<double>()), 5e-5) << target["name"];
+  }
+  EXPECT_GT(alignment["conditioning"].get<double>(), 0.02);
+  // The readings' noise (σ 0.02 mm over 9-19 points each) moves the frame by hundredths of a
+  // degree; a frame fixed by something else than the targets would not read them all as zero.
+  const double moved = alignment["rotation_from_best_fit_deg"].get<double>();
+  EXPECT_GT(moved, 0.0);
+  EXPECT_LT(moved, 0.2);
+  EXPECT_LT(turnDeg(reportedPose(json), sampleTruth()), 0.2);
+  nlohmann::json best_fit;
+  best_fit["transform_cad_from_scan"] = alignment["transform_cad_from_scan_best_fit"];
+  EXPECT_LT(turnDeg(reportedPose(best_fit), sampleTruth()), 0.02);
+  EXPECT_NEAR(turnDeg(reportedPose(best_fit), reportedPose(json)), moved, 1e-6);
+  // The targets are comparison points too, read in the aligned frame.
+  ASSERT_EQ(json["comparison_points"].size(), 6u);
+  EXPECT_EQ(json["comparison_points"][0]["datum"], "A");
+  EXPECT_EQ(json["comparison_points"][5]["deviation"],
+            alignment["targets"][5]["deviation_aligned"]);
+  namespace rt = freeform_inspection::report_test;
+  const auto rows = rt::csvRows(slurp(csv + "/points.csv"));
+  ASSERT_EQ(rows.size(), 6u);
+  EXPECT_EQ(rows[3].at("datum"), "B");
+  const std::string page = slurp(html);
+  EXPECT_NE(page.find("<h2>Datum alignment</h2>"), std::string::npos);
+  EXPECT_NE(page.find("<tr><th>C1</th><td>C</td>"), std::string::npos);
+
+  // Five targets: the pose stays the best fit's and the part is not evaluated.
+  const std::string five = temp("five_datums.yaml");
+  std::ofstream(five) << slurp(datums).substr(0, slurp(datums).find("  # C:"));
+  const CliRun short_run = runCli(args + " --points " + five);
+  ASSERT_EQ(short_run.exit_code, 0) << short_run.err;
+  const nlohmann::json refused = nlohmann::json::parse(short_run.out);
+  EXPECT_EQ(refused["verdict"], "NOT_EVALUATED");
+  const std::string reason = refused["verdict_reason"];
+  EXPECT_NE(reason.find("no datum alignment (5 datum target(s)"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("6 are needed"), std::string::npos) << reason;
+  EXPECT_FALSE(refused["datum_alignment"]["aligned"].get<bool>());
+  EXPECT_EQ(refused["transform_cad_from_scan"],
+            refused["datum_alignment"]["transform_cad_from_scan_best_fit"]);
+  EXPECT_EQ(refused["comparison_points"][0]["verdict"], "NOT_EVALUATED");
+}
+
 // The sample scan is of the fine blade; blade.stl samples its superellipse platform half as
 // densely, and its facets there lie up to 0.83 mm inside the exact outline (chord_error_test).
 // Against it a good part fails with four bumps at the platform's ends; the result says that

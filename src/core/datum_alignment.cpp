@@ -1,0 +1,255 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright 2026 The freeform_inspection authors
+#include "freeform_inspection/datum_alignment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "pipeline_internal.h"
+#include <Eigen/SVD>
+
+#include "freeform_inspection/global_registration.h"
+#include "freeform_inspection/mesh_query.h"
+
+namespace freeform_inspection {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// The rounds stop once no target moves by more than this share of its radius: far below any
+// reading's noise (the median of a few dozen points).
+constexpr double kSettledShareOfRadius = 1e-3;
+
+struct Target {
+  const ComparisonPointConfig* config = nullptr;
+  PlacedPoint place;
+};
+
+std::string quoted(const Target& target) {
+  return "datum target '" + target.config->name + "' (" + target.config->datum + ")";
+}
+
+std::string direction(const Eigen::Vector3d& v) {
+  const Eigen::Vector3d u = v.normalized();
+  char text[64];
+  std::snprintf(text, sizeof(text), "(%.2f, %.2f, %.2f)", u.x(), u.y(), u.z());
+  return text;
+}
+
+// The targets' constraints, one row each: the change of the deviation at target i under a small
+// turn ω (scaled by `spread`) about `centre` and a shift v is (p_i − c) × n_i · ω + n_i · v.
+Eigen::MatrixXd constraints(const std::vector<Target>& targets,
+                            const Eigen::Vector3d& centre,
+                            double spread) {
+  Eigen::MatrixXd rows(static_cast<Eigen::Index>(targets.size()), 6);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const PlacedPoint& p = targets[i].place;
+    const auto r = static_cast<Eigen::Index>(i);
+    rows.block<1, 3>(r, 0) = ((p.nominal - centre).cross(p.normal) / spread).transpose();
+    rows.block<1, 3>(r, 3) = p.normal.transpose();
+  }
+  return rows;
+}
+
+// Every target read at `pose`: the scan points near it (a superset: the foot of a point within
+// `max_distance` of the CAD lies within radius + max_distance of the point) and their signed
+// distances to the CAD.
+std::vector<PlaceReading> readTargets(const MeshQuery& cad,
+                                      const Points& scan_points,
+                                      const Eigen::Isometry3d& pose,
+                                      const std::vector<Target>& targets,
+                                      double max_distance) {
+  Points moved(scan_points.size());
+  for (std::size_t i = 0; i < scan_points.size(); ++i) {
+    moved[i] = pose * scan_points[i];
+  }
+  std::vector<PlaceReading> readings;
+  for (const Target& target : targets) {
+    const double reach = target.place.radius + max_distance;
+    Points near;
+    for (const Eigen::Vector3d& q : moved) {
+      if ((q - target.place.nominal).squaredNorm() <= reach * reach) {
+        near.push_back(q);
+      }
+    }
+    std::vector<float> deviation(near.size(), std::numeric_limits<float>::quiet_NaN());
+    const std::vector<ClosestPoint> closest = cad.closest(near, max_distance);
+    for (std::size_t i = 0; i < near.size(); ++i) {
+      if (closest[i].found) {
+        deviation[i] = static_cast<float>(closest[i].signed_distance);
+      }
+    }
+    readings.push_back(readAround(target.place, near, deviation));
+  }
+  return readings;
+}
+
+// The first target a reading missed, as the reason the alignment stops; empty when all read.
+std::string unread(const std::vector<Target>& targets, const std::vector<PlaceReading>& readings) {
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (!readings[i].measured()) {
+      return quoted(targets[i]) + " is not measured: " + std::to_string(readings[i].points) +
+             " scan point(s) within " + internal::formatLength(targets[i].place.radius) +
+             " of it, " + std::to_string(kMinComparisonPoints) + " needed";
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+DatumAlignment alignToDatums(const MeshQuery& cad,
+                             const Points& scan_points,
+                             const Eigen::Isometry3d& T_cad_scan,
+                             const std::vector<ComparisonPointConfig>& points,
+                             double default_radius,
+                             double max_distance) {
+  DatumAlignment result;
+  result.T_cad_scan_best_fit = T_cad_scan;
+  std::vector<Target> targets;
+  for (const ComparisonPointConfig& point : points) {
+    if (!point.datum.empty()) {
+      targets.push_back({&point, placeComparisonPoint(point, cad, default_radius)});
+    }
+  }
+  result.requested = !targets.empty();
+  if (!result.requested) {
+    return result;
+  }
+  for (const Target& target : targets) {
+    DatumTargetReading reading;
+    reading.name = target.config->name;
+    reading.datum = target.config->datum;
+    reading.nominal = target.place.nominal;
+    reading.normal = target.place.normal;
+    result.targets.push_back(reading);
+  }
+  for (const Target& target : targets) {
+    if (!target.place.near_surface()) {
+      result.message = quoted(target) + " lies " +
+                       (target.place.found ? internal::formatLength(target.place.off_surface)
+                                           : std::string("nowhere")) +
+                       " off the CAD surface";
+      return result;
+    }
+  }
+  if (targets.size() < kMinDatumTargets) {
+    result.message = std::to_string(targets.size()) + " datum target(s) fix at most " +
+                     std::to_string(targets.size()) + " of the pose's 6 degrees of freedom; " +
+                     std::to_string(kMinDatumTargets) + " are needed (3-2-1)";
+    return result;
+  }
+  // Turns about the targets' centre, scaled by their spread, so the constraints' singular values
+  // compare a turn with a shift.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Target& target : targets) {
+    centre += target.place.nominal;
+  }
+  centre /= static_cast<double>(targets.size());
+  double spread = 0.0;
+  for (const Target& target : targets) {
+    spread += (target.place.nominal - centre).squaredNorm();
+  }
+  spread = std::sqrt(spread / static_cast<double>(targets.size()));
+  if (!(spread > 0.0)) {
+    result.message = "the datum targets all lie at one place: they fix no turn of the pose";
+    return result;
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(constraints(targets, centre, spread),
+                                              Eigen::ComputeThinU | Eigen::ComputeFullV);
+  const Eigen::VectorXd& values = svd.singularValues();
+  result.conditioning = values(5) / values(0);
+  if (!(result.conditioning >= kMinDatumConditioning)) {
+    const Eigen::VectorXd free = svd.matrixV().col(5);
+    const bool shift = free.tail<3>().norm() >= free.head<3>().norm();
+    char ratio[32];
+    std::snprintf(ratio, sizeof(ratio), "%.3g", result.conditioning);
+    result.message = "the datum targets leave the pose free to " +
+                     (shift ? "shift along " + direction(free.tail<3>())
+                            : "turn about an axis along " + direction(free.head<3>())) +
+                     " (their normals hold it " + ratio + " of the strongest motion, " +
+                     std::to_string(kMinDatumConditioning) +
+                     " needed): the targets need normals along it";
+    return result;
+  }
+  double settled = std::numeric_limits<double>::infinity();
+  for (const Target& target : targets) {
+    settled = std::min(settled, kSettledShareOfRadius * target.place.radius);
+  }
+
+  Eigen::Isometry3d pose = T_cad_scan;
+  std::vector<PlaceReading> readings = readTargets(cad, scan_points, pose, targets, max_distance);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    result.targets[i].best_fit = readings[i].deviation;
+  }
+  double step = std::numeric_limits<double>::infinity();
+  while (result.rounds < kMaxDatumRounds) {
+    const std::string missing = unread(targets, readings);
+    if (!missing.empty()) {
+      result.message = missing;
+      for (std::size_t i = 0; i < targets.size(); ++i) {
+        result.targets[i].points = readings[i].points;
+      }
+      return result;
+    }
+    if (step <= settled) {
+      break;
+    }
+    Eigen::VectorXd deviation(static_cast<Eigen::Index>(targets.size()));
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      deviation(static_cast<Eigen::Index>(i)) = readings[i].deviation;
+    }
+    const Eigen::VectorXd motion = svd.solve(-deviation);
+    const Eigen::Vector3d turn = motion.head<3>() / spread;
+    const Eigen::Vector3d shift = motion.tail<3>();
+    step = 0.0;
+    for (const Target& target : targets) {
+      step = std::max(step, (turn.cross(target.place.nominal - centre) + shift).norm());
+    }
+    const double angle = turn.norm();
+    const Eigen::Matrix3d rotation = angle > 0.0
+                                         ? Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix()
+                                         : Eigen::Matrix3d::Identity();
+    Eigen::Isometry3d correction = Eigen::Isometry3d::Identity();
+    correction.linear() = rotation;
+    correction.translation() = centre + shift - rotation * centre;
+    pose = correction * pose;
+    ++result.rounds;
+    readings = readTargets(cad, scan_points, pose, targets, max_distance);
+  }
+  const std::string missing = unread(targets, readings);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    result.targets[i].points = readings[i].points;
+    result.targets[i].aligned = readings[i].deviation;
+  }
+  if (!missing.empty()) {
+    result.message = missing;
+    return result;
+  }
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : scan_points) {
+    centroid += p;
+  }
+  centroid /= static_cast<double>(std::max<std::size_t>(scan_points.size(), 1));
+  const PoseDifference moved = poseDifference(T_cad_scan, pose, centroid);
+  result.aligned = true;
+  result.turn_deg = moved.angle * 180.0 / kPi;
+  result.shift = moved.shift;
+  char text[160];
+  std::snprintf(text,
+                sizeof(text),
+                "aligned to %zu datum targets in %d round(s)%s: %.4g deg and %.4g mm from the best "
+                "fit",
+                targets.size(),
+                result.rounds,
+                step <= settled ? "" : " (stopped at the limit, not settled)",
+                result.turn_deg,
+                result.shift * 1e3);
+  result.message = text;
+  result.T_cad_scan = pose;
+  return result;
+}
+
+}  // namespace freeform_inspection
