@@ -110,8 +110,13 @@ std::string registrationSection(const InspectionResult& r) {
                   {std::to_string(r.counts.features) + " / " +
                    std::to_string(r.counts.correspondences)}) +
          tableRow("Run time", {number(total, 2) + " s"}) + "</table>\n" +
-         "<p>T_cad_scan (scan to CAD, metres):</p>\n<pre>" + transformText(r.T_cad_scan) +
-         "</pre>\n";
+         "<p>T_cad_scan (scan to CAD, metres" +
+         (r.datum_alignment.aligned ? ", the datum frame; the best fit is below" : "") +
+         "):</p>\n<pre>" + transformText(r.T_cad_scan) + "</pre>\n" +
+         (r.datum_alignment.aligned
+              ? "<p>T_cad_scan of the best fit:</p>\n<pre>" +
+                    transformText(r.datum_alignment.T_cad_scan_best_fit) + "</pre>\n"
+              : std::string());
 }
 
 std::string statisticsSection(const DeviationStatistics& s, const ToleranceConfig& tolerance) {

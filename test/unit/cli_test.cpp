@@ -693,6 +693,7 @@ TEST(Cli, DatumTargetsFixTheFrameTheDeviationIsMeasuredIn) {
   const std::string page = slurp(html);
   EXPECT_NE(page.find("<h2>Datum alignment</h2>"), std::string::npos);
   EXPECT_NE(page.find("<tr><th>C1</th><td>C</td>"), std::string::npos);
+  EXPECT_NE(page.find("<p>T_cad_scan of the best fit:</p>"), std::string::npos);
 
   // Five targets: the pose stays the best fit's and the part is not evaluated.
   const std::string five = temp("five_datums.yaml");
