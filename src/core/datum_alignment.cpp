@@ -53,9 +53,10 @@ Eigen::MatrixXd constraints(const std::vector<Target>& targets,
   return rows;
 }
 
-// Every target read at `pose`: the scan points near it (a superset: the foot of a point within
-// `max_distance` of the CAD lies within radius + max_distance of the point) and their signed
-// distances to the CAD.
+// Every target read at `pose`. Only the points that can be read are queried on the CAD: with
+// q − nominal = a·n + t (t across the normal n), a point's foot q − d·n lies at (a − d)·n + t from
+// the nominal, so within the radius r only if |t| ≤ r, and, with |d| ≤ max_distance, only if
+// |a| ≤ max_distance + r: a cylinder along the normal, not a ball max_distance wide.
 std::vector<PlaceReading> readTargets(const MeshQuery& cad,
                                       const Points& scan_points,
                                       const Eigen::Isometry3d& pose,
@@ -67,10 +68,13 @@ std::vector<PlaceReading> readTargets(const MeshQuery& cad,
   }
   std::vector<PlaceReading> readings;
   for (const Target& target : targets) {
-    const double reach = target.place.radius + max_distance;
+    const double r = target.place.radius;
+    const double along = max_distance + r;
     Points near;
     for (const Eigen::Vector3d& q : moved) {
-      if ((q - target.place.nominal).squaredNorm() <= reach * reach) {
+      const Eigen::Vector3d v = q - target.place.nominal;
+      const double a = v.dot(target.place.normal);
+      if (std::abs(a) <= along && v.squaredNorm() - a * a <= r * r) {
         near.push_back(q);
       }
     }
