@@ -58,6 +58,11 @@ struct DatumAlignment {
   /// Smallest over largest singular value of the targets' constraints (rotations scaled by the
   /// targets' spread): 0 when a motion is free, 1 for a perfectly balanced scheme.
   double conditioning = std::numeric_limits<double>::quiet_NaN();
+  /// How far the readings' noise leaves the frame free (each a median of its points, carried
+  /// through the solve): 1σ turn about the least held axis [deg], and 1σ shift of the targets'
+  /// centre along the least held direction [m]. NaN until aligned.
+  double rotation_std_deg = std::numeric_limits<double>::quiet_NaN();
+  double translation_std = std::numeric_limits<double>::quiet_NaN();
   std::vector<DatumTargetReading> targets;  ///< in the configuration's order
 };
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pipeline_internal.h"
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
 #include "freeform_inspection/global_registration.h"
@@ -100,6 +101,32 @@ std::string unread(const std::vector<Target>& targets, const std::vector<PlaceRe
     }
   }
   return {};
+}
+
+// How far the readings' noise leaves the frame free: each reading is a median of n points of
+// standard deviation s, variance (π/2)·s²/n for Gaussian noise, carried through the
+// least-squares solve (its pseudo-inverse P): Σ = P·diag(variances)·Pᵀ over the scaled turn
+// and the shift at the targets' centre. Reported for the least held axis of each.
+void frameSpread(const Eigen::JacobiSVD<Eigen::MatrixXd>& svd,
+                 const std::vector<PlaceReading>& readings,
+                 double spread,
+                 DatumAlignment* result) {
+  const auto n = static_cast<Eigen::Index>(readings.size());
+  Eigen::VectorXd variance(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const PlaceReading& r = readings[static_cast<std::size_t>(i)];
+    variance(i) = 0.5 * kPi * r.spread * r.spread / static_cast<double>(r.points);
+  }
+  const Eigen::MatrixXd inverse = svd.solve(Eigen::MatrixXd::Identity(n, n));  // 6 x n
+  const Eigen::Matrix<double, 6, 6> covariance =
+      inverse * variance.asDiagonal() * inverse.transpose();
+  const auto largest = [](const Eigen::Matrix3d& block) {
+    return std::sqrt(std::max(
+        0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(block).eigenvalues().maxCoeff()));
+  };
+  result->rotation_std_deg =
+      largest(covariance.topLeftCorner<3, 3>() / (spread * spread)) * 180.0 / kPi;
+  result->translation_std = largest(covariance.bottomRightCorner<3, 3>());
 }
 
 }  // namespace
@@ -241,16 +268,19 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
   result.aligned = true;
   result.turn_deg = moved.angle * 180.0 / kPi;
   result.shift = moved.shift;
-  char text[160];
+  frameSpread(svd, readings, spread, &result);
+  char text[256];
   std::snprintf(text,
                 sizeof(text),
                 "aligned to %zu datum targets in %d round(s)%s: %.4g deg and %.4g mm from the best "
-                "fit",
+                "fit; the readings' noise leaves the frame %.2g deg and %.2g mm (1 sigma)",
                 targets.size(),
                 result.rounds,
                 step <= settled ? "" : " (stopped at the limit, not settled)",
                 result.turn_deg,
-                result.shift * 1e3);
+                result.shift * 1e3,
+                result.rotation_std_deg,
+                result.translation_std * 1e3);
   result.message = text;
   result.T_cad_scan = pose;
   return result;

@@ -152,6 +152,8 @@ nlohmann::ordered_json datumAlignmentJson(const DatumAlignment& a) {
           {"translation_from_best_fit", numberOrNull(a.shift)},
           {"rounds", a.rounds},
           {"conditioning", numberOrNull(a.conditioning)},
+          {"rotation_std_deg", numberOrNull(a.rotation_std_deg)},
+          {"translation_std", numberOrNull(a.translation_std)},
           {"targets", targets}};
 }
 

@@ -7,11 +7,13 @@
 #include "freeform_inspection/datum_alignment.h"
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "test_shapes.h"
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "freeform_inspection/mesh_query.h"
@@ -32,9 +34,9 @@ const MeshQuery& box() {
 }
 
 // The part where the CAD's box is, faces on a grid, the top raised; `sigma` of noise along each
-// face's normal; `without_x_low`: the face x = −hx not scanned.
-Points partSurface(double sigma, bool without_x_low = false) {
-  std::mt19937 rng(7);
+// face's normal (drawn from `seed`); `without_x_low`: the face x = −hx not scanned.
+Points partSurface(double sigma, bool without_x_low = false, unsigned seed = 7) {
+  std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, sigma > 0.0 ? sigma : 1.0);
   Points points;
   const auto face = [&](int axis, double side) {
@@ -154,6 +156,56 @@ TEST(DatumAlignment, NoisyReadingsMoveThePoseByTheirMediansErrorOnly) {
   for (const DatumTargetReading& t : aligned.targets) {
     EXPECT_LT(std::abs(t.aligned), 0.25 * sigma) << t.name;
   }
+}
+
+// The spread the alignment reports for its frame is the spread it has: over 24 noise draws the
+// frame's errors about their least held axis and along their least held direction match the
+// reported 1σ (a sample of 24 gives its standard deviation within about ±30 %).
+TEST(DatumAlignment, TheFrameSpreadItReportsIsTheSpreadItHas) {
+  const double sigma = 2e-5;
+  const std::vector<ComparisonPointConfig> targets = nest();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d turns = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d shifts = Eigen::Matrix3d::Zero();
+  double rotation_std = 0.0;
+  double translation_std = 0.0;
+  constexpr int kDraws = 24;
+  for (int draw = 0; draw < kDraws; ++draw) {
+    const Points scan = inScanFrame(partSurface(sigma, false, 100 + draw));
+    const DatumAlignment aligned = alignToDatums(box(), scan, bestFit(), targets, 0.001, kReach);
+    ASSERT_TRUE(aligned.aligned) << aligned.message;
+    if (draw == 0) {
+      for (const DatumTargetReading& t : aligned.targets) {
+        centre += t.nominal / static_cast<double>(aligned.targets.size());
+      }
+    }
+    // The frame's error as a motion of the CAD frame: a turn, and the shift of the targets'
+    // centre.
+    const Eigen::Isometry3d error = aligned.T_cad_scan * truth().inverse();
+    const Eigen::AngleAxisd turn(error.linear());
+    const Eigen::Vector3d turn_vector = turn.angle() * turn.axis();
+    const Eigen::Vector3d shift = error * centre - centre;
+    turns += turn_vector * turn_vector.transpose() / kDraws;
+    shifts += shift * shift.transpose() / kDraws;
+    rotation_std += aligned.rotation_std_deg / kDraws;
+    translation_std += aligned.translation_std / kDraws;
+  }
+  const auto largest = [](const Eigen::Matrix3d& m) {
+    return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues().maxCoeff());
+  };
+  const double observed_turn = largest(turns) * 180.0 / kPi;
+  const double observed_shift = largest(shifts);
+  std::printf(
+      "  1 sigma turn: reported %.3g deg, observed %.3g deg; shift: reported %.3g um, "
+      "observed %.3g um\n",
+      rotation_std,
+      observed_turn,
+      translation_std * 1e6,
+      observed_shift * 1e6);
+  EXPECT_GT(observed_turn, 0.6 * rotation_std);
+  EXPECT_LT(observed_turn, 1.6 * rotation_std);
+  EXPECT_GT(observed_shift, 0.6 * translation_std);
+  EXPECT_LT(observed_shift, 1.6 * translation_std);
 }
 
 TEST(DatumAlignment, MoreTargetsThanSixAreFittedByLeastSquares) {
