@@ -195,14 +195,16 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
   if (!(result.conditioning >= kMinDatumConditioning)) {
     const Eigen::VectorXd free = svd.matrixV().col(5);
     const bool shift = free.tail<3>().norm() >= free.head<3>().norm();
-    char ratio[32];
-    std::snprintf(ratio, sizeof(ratio), "%.3g", result.conditioning);
+    char held[96];
+    std::snprintf(held,
+                  sizeof(held),
+                  " (their normals hold it %.3g of the strongest motion, %.3g needed)",
+                  result.conditioning,
+                  kMinDatumConditioning);
     result.message = "the datum targets leave the pose free to " +
                      (shift ? "shift along " + direction(free.tail<3>())
                             : "turn about an axis along " + direction(free.head<3>())) +
-                     " (their normals hold it " + ratio + " of the strongest motion, " +
-                     std::to_string(kMinDatumConditioning) +
-                     " needed): the targets need normals along it";
+                     held + ": the targets need normals along it";
     return result;
   }
   double settled = std::numeric_limits<double>::infinity();
