@@ -318,7 +318,7 @@ void judgePart(const PipelineConfig& config, InspectionResult* result) {
     return;
   }
   const DatumAlignment& datums = result->datum_alignment;
-  if (datums.requested && !datums.aligned) {
+  if (datums.requested && !datums.aligned && result->registration == RegistrationStatus::kOk) {
     result->verdict_reason = "not evaluated: no datum alignment (" + datums.message +
                              "); the deviation shown is the best fit's";
     return;

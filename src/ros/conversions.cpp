@@ -159,7 +159,10 @@ freeform_inspection::InspectionReport toReport(const fi::InspectionResult& resul
   report.offset_from_guess_deg = result.offset_from_initial_deg;
   report.offset_from_guess = result.offset_from_initial;
   const fi::DatumAlignment& datums = result.datum_alignment;
-  report.alignment = !datums.requested ? "best_fit" : datums.aligned ? "datums" : "datums_failed";
+  report.alignment = result.registration == fi::RegistrationStatus::kFixed ? "fixed"
+                     : !datums.requested                                   ? "best_fit"
+                     : datums.aligned                                      ? "datums"
+                                                                           : "datums_failed";
   report.alignment_message = datums.message;
   report.best_fit_transform =
       tf2::eigenToTransform(

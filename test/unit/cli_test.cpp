@@ -709,6 +709,20 @@ TEST(Cli, DatumTargetsFixTheFrameTheDeviationIsMeasuredIn) {
   EXPECT_EQ(refused["transform_cad_from_scan"],
             refused["datum_alignment"]["transform_cad_from_scan_best_fit"]);
   EXPECT_EQ(refused["comparison_points"][0]["verdict"], "NOT_EVALUATED");
+
+  // A fixed pose is the datum frame already: the targets are read as comparison points only.
+  const CliRun fixed = runCli("--cad " + kBladeFine + " --cad-scale 0.001 --scan " + kScan +
+                              " --tolerance 0.0002 --fixed-pose " + poseArgument(sampleTruth()) +
+                              " --points " + datums);
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
+  const nlohmann::json at_fixed = nlohmann::json::parse(fixed.out);
+  EXPECT_EQ(at_fixed["verdict"], "PASS") << at_fixed["verdict_reason"];
+  EXPECT_FALSE(at_fixed["datum_alignment"]["aligned"].get<bool>());
+  EXPECT_EQ(at_fixed["datum_alignment"]["message"],
+            "not aligned: the fixed pose is the datum frame");
+  EXPECT_EQ(at_fixed["comparison_points"][0]["verdict"], "PASS");
+  EXPECT_NE(at_fixed["warnings"].dump().find("the datum targets do not move a fixed pose"),
+            std::string::npos);
 }
 
 // The sample scan is of the fine blade; blade.stl samples its superellipse platform half as
