@@ -54,42 +54,92 @@ Eigen::MatrixXd constraints(const std::vector<Target>& targets,
   return rows;
 }
 
-// Every target read at `pose`. Only the points that can be read are queried on the CAD: with
+// Reads every target at a pose. Only the points that can be read are queried on the CAD: with
 // q − nominal = a·n + t (t across the normal n), a point's foot q − d·n lies at (a − d)·n + t from
 // the nominal, so within the radius r only if |t| ≤ r, and, with |d| ≤ max_distance, only if
-// |a| ≤ max_distance + r: a cylinder along the normal, not a ball max_distance wide.
-std::vector<PlaceReading> readTargets(const MeshQuery& cad,
-                                      const Points& scan_points,
-                                      const Eigen::Isometry3d& pose,
-                                      const std::vector<Target>& targets,
-                                      double max_distance) {
-  Points moved(scan_points.size());
-  for (std::size_t i = 0; i < scan_points.size(); ++i) {
-    moved[i] = pose * scan_points[i];
+// |a| ≤ max_distance + r: a cylinder along the normal. The points of that cylinder widened by r
+// are gathered from the whole scan once, and again only when the pose has since moved some point
+// of the wide cylinder by more than r (one pass over a 1M-point scan, not one per round).
+class TargetReader {
+ public:
+  TargetReader(const MeshQuery& cad,
+               const Points& scan_points,
+               const std::vector<Target>& targets,
+               double max_distance)
+      : cad_(cad), scan_(scan_points), targets_(targets), max_distance_(max_distance) {}
+
+  std::vector<PlaceReading> read(const Eigen::Isometry3d& pose) {
+    if (near_.empty() || moved(pose)) {
+      gather(pose);
+    }
+    std::vector<PlaceReading> readings;
+    for (std::size_t t = 0; t < targets_.size(); ++t) {
+      const PlacedPoint& place = targets_[t].place;
+      Points near;
+      for (const std::size_t i : near_[t]) {
+        const Eigen::Vector3d q = pose * scan_[i];
+        if (inCylinder(q, place, 0.0)) {
+          near.push_back(q);
+        }
+      }
+      std::vector<float> deviation(near.size(), std::numeric_limits<float>::quiet_NaN());
+      const std::vector<ClosestPoint> closest = cad_.closest(near, max_distance_);
+      for (std::size_t i = 0; i < near.size(); ++i) {
+        if (closest[i].found) {
+          deviation[i] = static_cast<float>(closest[i].signed_distance);
+        }
+      }
+      readings.push_back(readAround(place, near, deviation));
+    }
+    return readings;
   }
-  std::vector<PlaceReading> readings;
-  for (const Target& target : targets) {
-    const double r = target.place.radius;
-    const double along = max_distance + r;
-    Points near;
-    for (const Eigen::Vector3d& q : moved) {
-      const Eigen::Vector3d v = q - target.place.nominal;
-      const double a = v.dot(target.place.normal);
-      if (std::abs(a) <= along && v.squaredNorm() - a * a <= r * r) {
-        near.push_back(q);
+
+ private:
+  // In the cylinder a reading comes from, widened by `slack`.
+  bool inCylinder(const Eigen::Vector3d& q, const PlacedPoint& place, double slack) const {
+    const Eigen::Vector3d v = q - place.nominal;
+    const double a = v.dot(place.normal);
+    const double across = place.radius + slack;
+    return std::abs(a) <= max_distance_ + place.radius + slack &&
+           v.squaredNorm() - a * a <= across * across;
+  }
+
+  void gather(const Eigen::Isometry3d& pose) {
+    gathered_at_ = pose;
+    near_.assign(targets_.size(), {});
+    for (std::size_t i = 0; i < scan_.size(); ++i) {
+      const Eigen::Vector3d q = pose * scan_[i];
+      for (std::size_t t = 0; t < targets_.size(); ++t) {
+        if (inCylinder(q, targets_[t].place, targets_[t].place.radius)) {
+          near_[t].push_back(i);
+        }
       }
     }
-    std::vector<float> deviation(near.size(), std::numeric_limits<float>::quiet_NaN());
-    const std::vector<ClosestPoint> closest = cad.closest(near, max_distance);
-    for (std::size_t i = 0; i < near.size(); ++i) {
-      if (closest[i].found) {
-        deviation[i] = static_cast<float>(closest[i].signed_distance);
+  }
+
+  // Whether the motion from the gathering's pose to `pose` may move a point of some target's
+  // wide cylinder by more than its radius: by at most the move of the nominal plus the turn
+  // times the cylinder's reach from it.
+  bool moved(const Eigen::Isometry3d& pose) const {
+    const Eigen::Isometry3d motion = pose * gathered_at_.inverse();
+    const double turn = Eigen::AngleAxisd(motion.linear()).angle();
+    for (const Target& target : targets_) {
+      const PlacedPoint& place = target.place;
+      const double reach = std::hypot(max_distance_ + 2.0 * place.radius, 2.0 * place.radius);
+      if ((motion * place.nominal - place.nominal).norm() + turn * reach > place.radius) {
+        return true;
       }
     }
-    readings.push_back(readAround(target.place, near, deviation));
+    return false;
   }
-  return readings;
-}
+
+  const MeshQuery& cad_;
+  const Points& scan_;
+  const std::vector<Target>& targets_;
+  double max_distance_;
+  Eigen::Isometry3d gathered_at_ = Eigen::Isometry3d::Identity();
+  std::vector<std::vector<std::size_t>> near_;  // per target: indices into the scan
+};
 
 // The first target a reading missed, as the reason the alignment stops; empty when all read.
 std::string unread(const std::vector<Target>& targets, const std::vector<PlaceReading>& readings) {
@@ -213,7 +263,8 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
   }
 
   Eigen::Isometry3d pose = T_cad_scan;
-  std::vector<PlaceReading> readings = readTargets(cad, scan_points, pose, targets, max_distance);
+  TargetReader reader(cad, scan_points, targets, max_distance);
+  std::vector<PlaceReading> readings = reader.read(pose);
   for (std::size_t i = 0; i < targets.size(); ++i) {
     result.targets[i].best_fit = readings[i].deviation;
   }
@@ -250,7 +301,7 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
     correction.translation() = centre + shift - rotation * centre;
     pose = correction * pose;
     ++result.rounds;
-    readings = readTargets(cad, scan_points, pose, targets, max_distance);
+    readings = reader.read(pose);
   }
   const std::string missing = unread(targets, readings);
   for (std::size_t i = 0; i < targets.size(); ++i) {

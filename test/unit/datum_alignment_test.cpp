@@ -144,6 +144,21 @@ TEST(DatumAlignment, ThreeTwoOneBringsBackTheFrameTheDatumFacesDefine) {
   EXPECT_NEAR(top.signed_distance, kTopRaised, 1e-8);
 }
 
+// From a start 2° and 5 mm off (beyond the 3 mm the targets are read over) the readings are
+// gathered again as the pose moves, and the frame is the same.
+TEST(DatumAlignment, AFarStartEndsInTheSameFrame) {
+  const Points scan = inScanFrame(partSurface(0.0));
+  const Eigen::Isometry3d far =
+      Eigen::Translation3d(0.003, -0.004, 0.0) *
+      Eigen::AngleAxisd(2.0 * kPi / 180.0, Eigen::Vector3d(1.0, -0.5, 0.3).normalized()) * truth();
+  const DatumAlignment aligned = alignToDatums(box(), scan, far, nest(), 0.001, kReach);
+  ASSERT_TRUE(aligned.aligned) << aligned.message;
+  EXPECT_LT(angleDeg(aligned.T_cad_scan, truth()), 1e-6);
+  EXPECT_LT(largestMove(aligned.T_cad_scan), 1e-8);
+  EXPECT_NEAR(aligned.turn_deg, 2.0, 1e-6);
+  EXPECT_GT(aligned.shift, 0.003);
+}
+
 TEST(DatumAlignment, NoisyReadingsMoveThePoseByTheirMediansErrorOnly) {
   const double sigma = 2e-5;  // 0.02 mm along the normals
   const Points scan = inScanFrame(partSurface(sigma));
