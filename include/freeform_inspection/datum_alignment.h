@@ -74,6 +74,9 @@ constexpr double kMinDatumConditioning = 0.02;
 /// Rounds at most; each reads every target again where the last one moved the pose.
 constexpr int kMaxDatumRounds = 20;
 
+/// @brief Whether some of `points` names a datum (is a datum target).
+bool hasDatumTargets(const std::vector<ComparisonPointConfig>& points);
+
 /// @brief The pose at which the scan's surface passes through every datum target, starting
 /// from `T_cad_scan` (the best fit). Comparison points without a datum are ignored; without
 /// any, nothing is done (`requested` false). When the targets are fewer than six, leave a

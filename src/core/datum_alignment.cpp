@@ -181,6 +181,12 @@ void frameSpread(const Eigen::JacobiSVD<Eigen::MatrixXd>& svd,
 
 }  // namespace
 
+bool hasDatumTargets(const std::vector<ComparisonPointConfig>& points) {
+  return std::any_of(points.begin(), points.end(), [](const ComparisonPointConfig& p) {
+    return !p.datum.empty();
+  });
+}
+
 DatumAlignment alignToDatums(const MeshQuery& cad,
                              const Points& scan_points,
                              const Eigen::Isometry3d& T_cad_scan,
@@ -189,15 +195,15 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
                              double max_distance) {
   DatumAlignment result;
   result.T_cad_scan_best_fit = T_cad_scan;
+  result.requested = hasDatumTargets(points);
+  if (!result.requested) {
+    return result;
+  }
   std::vector<Target> targets;
   for (const ComparisonPointConfig& point : points) {
     if (!point.datum.empty()) {
       targets.push_back({&point, placeComparisonPoint(point, cad, default_radius)});
     }
-  }
-  result.requested = !targets.empty();
-  if (!result.requested) {
-    return result;
   }
   for (const Target& target : targets) {
     DatumTargetReading reading;
@@ -269,7 +275,7 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
     result.targets[i].best_fit = readings[i].deviation;
   }
   double step = std::numeric_limits<double>::infinity();
-  while (result.rounds < kMaxDatumRounds) {
+  while (true) {
     const std::string missing = unread(targets, readings);
     if (!missing.empty()) {
       result.message = missing;
@@ -278,7 +284,7 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
       }
       return result;
     }
-    if (step <= settled) {
+    if (step <= settled || result.rounds == kMaxDatumRounds) {
       break;
     }
     Eigen::VectorXd deviation(static_cast<Eigen::Index>(targets.size()));
@@ -303,14 +309,9 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
     ++result.rounds;
     readings = reader.read(pose);
   }
-  const std::string missing = unread(targets, readings);
   for (std::size_t i = 0; i < targets.size(); ++i) {
     result.targets[i].points = readings[i].points;
     result.targets[i].aligned = readings[i].deviation;
-  }
-  if (!missing.empty()) {
-    result.message = missing;
-    return result;
   }
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : scan_points) {

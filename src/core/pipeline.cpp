@@ -1284,11 +1284,7 @@ void alignToDatumTargets(const Model& model,
                          const Points& points,
                          const PipelineConfig& config,
                          InspectionResult* result) {
-  const bool requested =
-      std::any_of(config.comparison_points.begin(),
-                  config.comparison_points.end(),
-                  [](const ComparisonPointConfig& p) { return !p.datum.empty(); });
-  if (!requested) {
+  if (!hasDatumTargets(config.comparison_points)) {
     return;
   }
   DatumAlignment& datums = result->datum_alignment;
