@@ -21,6 +21,9 @@ namespace freeform_inspection {
 /// How out-of-tolerance points become defect regions.
 struct DefectConfig {
   int min_points = 10;  ///< smaller regions are noise, not defects [points]
+  /// Regions of less area are not defects either: the smallest flaw the drawing or the customer
+  /// counts, whatever the scan's density [m²]. 0 leaves the size to min_points alone.
+  double min_area = 0.0;
   /// Clouds: two points are neighbours within this many median scan spacings. 4 gives a
   /// random sampling ~11 neighbours per point, well above the ~4.5 where a random graph falls
   /// apart into pieces (2.5 split one dent into a dozen regions).

@@ -51,6 +51,11 @@ struct DeviationConfig {
   /// within 2.5 scan spacings when the scan is sparser than that.
   double coverage_distance_cells = 1.0;
   int histogram_bins = 40;  ///< bins of the deviation histogram
+  /// Scans whose normals point out of the material (scanner normals, meshes, range images): a
+  /// point is measured to the closest CAD surface turned less than this from its normal [deg],
+  /// so a point of a thin wall dented or worn past its middle reads against its own side, not
+  /// the far one. 180 measures every point to the closest surface whatever its way.
+  double facing_tolerance_deg = 80.0;
 };
 
 /// @brief One message per invalid field; empty when valid.
@@ -105,9 +110,14 @@ struct SurfaceDistances {
 /// Points beyond `max_distance` [m], or whose closest point is on the border of an open CAD
 /// surface with the offset mostly along the surface (the scan runs past the CAD's edge), are
 /// unmatched.
+/// @param normals_cad empty, or each point's outward normal in the CAD frame: the point is then
+/// measured to the closest surface turned less than `facing_deg` from it (and to the closest
+/// surface whatever its way when none within `max_distance` is, or its normal is zero).
 SurfaceDistances measureDeviation(const Model& model,
                                   const Points& points_cad,
-                                  double max_distance);
+                                  double max_distance,
+                                  const Points& normals_cad = {},
+                                  double facing_deg = 180.0);
 
 /// @brief The paper's verification channel (§3.6.2): per scan point, mean_k |V_k(scan) -
 /// V_k(CAD)| between its descriptor cell and the CAD cell it lies on (the nearest CAD cell

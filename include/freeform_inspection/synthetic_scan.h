@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "freeform_inspection/mesh_query.h"
+#include "freeform_inspection/surface_defect.h"
 #include "freeform_inspection/types.h"
 
 /// @file synthetic_scan.h
@@ -45,5 +46,12 @@ struct SyntheticScan {
 /// adds noise along the normal and outliers, then moves everything by a uniformly random
 /// rotation and a translation of random direction and length.
 SyntheticScan makeSyntheticScan(const MeshQuery& cad, const SyntheticScanConfig& config);
+
+/// @brief Presses `defect` (CAD frame) into a generated scan: each surface point (not the
+/// outliers) moves by defectDisplacement() along the CAD normal at its closest point, where
+/// that normal is within 60° of the normal at the defect's centre, so the far side of a wall
+/// thinner than the defect stays where it was. The scan's normals are left as they were.
+/// @return how many points moved.
+std::size_t pressDefect(const MeshQuery& cad, const SurfaceDefect& defect, SyntheticScan* scan);
 
 }  // namespace freeform_inspection

@@ -125,6 +125,9 @@ std::vector<std::string> validate(const DefectConfig& config) {
   if (config.min_points < 1) {
     errors.push_back("defects.min_points must be at least 1");
   }
+  if (!(std::isfinite(config.min_area) && config.min_area >= 0.0)) {
+    errors.push_back("defects.min_area must be a finite area >= 0");
+  }
   if (!(config.neighbour_spacings >= 1.0 && config.neighbour_spacings <= 100.0)) {
     errors.push_back("defects.neighbour_spacings must be in [1, 100]");
   }
@@ -283,9 +286,14 @@ DefectResult findDefects(DefectNeighbourhood& neighbourhood,
     region.centroid /= static_cast<double>(region.points);
     region.mean /= static_cast<double>(region.points);
   }
-  // Largest |peak| first; ties by size, then by the order found (stable).
-  std::vector<int> order(regions.size());
-  std::iota(order.begin(), order.end(), 0);
+  // Regions under min_area are dropped (an area the estimate could not give is kept); the rest,
+  // largest |peak| first; ties by size, then by the order found (stable).
+  std::vector<int> order;
+  for (std::size_t r = 0; r < regions.size(); ++r) {
+    if (!(regions[r].area < config.min_area)) {
+      order.push_back(static_cast<int>(r));
+    }
+  }
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     const auto& ra = regions[static_cast<std::size_t>(a)];
     const auto& rb = regions[static_cast<std::size_t>(b)];
@@ -294,7 +302,7 @@ DefectResult findDefects(DefectNeighbourhood& neighbourhood,
     }
     return ra.points > rb.points;
   });
-  std::vector<int> rank(regions.size());
+  std::vector<int> rank(regions.size(), -1);
   for (std::size_t r = 0; r < order.size(); ++r) {
     rank[static_cast<std::size_t>(order[r])] = static_cast<int>(r);
     result.regions.push_back(regions[static_cast<std::size_t>(order[r])]);

@@ -104,13 +104,60 @@ std::vector<std::string> validate(const DeviationConfig& config) {
   if (config.histogram_bins < 2 || config.histogram_bins > 1000) {
     errors.push_back("deviation.histogram_bins must be in [2, 1000]");
   }
+  if (!(config.facing_tolerance_deg > 0.0 && config.facing_tolerance_deg <= 180.0)) {
+    errors.push_back("deviation.facing_tolerance_deg must be in (0, 180]");
+  }
   return errors;
 }
 
 SurfaceDistances measureDeviation(const Model& model,
                                   const Points& points_cad,
-                                  double max_distance) {
-  const std::vector<ClosestPoint> closest = model.query().closest(points_cad, max_distance);
+                                  double max_distance,
+                                  const Points& normals_cad,
+                                  double facing_deg) {
+  std::vector<ClosestPoint> closest = model.query().closest(points_cad, max_distance);
+  if (facing_deg < 180.0 && normals_cad.size() == points_cad.size()) {
+    // Only where the closest surface faces against the point (the far side of a thin wall: as
+    // far turned from its normal as the surfaces accepted are near it) is it looked for again
+    // among the surfaces facing the point's way; a surface side-on to it (an edge's rounding)
+    // is its own.
+    constexpr double kDegree = 3.14159265358979323846 / 180.0;
+    const double min_cos = std::cos(facing_deg * kDegree);
+    Points turned_away;
+    Points their_normals;
+    std::vector<std::size_t> which;
+    for (std::size_t i = 0; i < points_cad.size(); ++i) {
+      if (closest[i].found && normals_cad[i].squaredNorm() > 0.0 &&
+          closest[i].normal.dot(normals_cad[i]) < -min_cos * normals_cad[i].norm()) {
+        turned_away.push_back(points_cad[i]);
+        their_normals.push_back(normals_cad[i]);
+        which.push_back(i);
+      }
+    }
+    // Normals that most of the scan turns against its closest surface point into the
+    // material (an inward winding): they tell nothing of which side a point is on.
+    std::size_t found = 0;
+    for (const ClosestPoint& c : closest) {
+      found += c.found ? 1 : 0;
+    }
+    if (2 * which.size() > found) {
+      turned_away.clear();
+      their_normals.clear();
+      which.clear();
+    }
+    const std::vector<ClosestPoint> facing =
+        model.query().closestFacing(turned_away,
+                                    their_normals,
+                                    min_cos,
+                                    true,
+                                    max_distance,
+                                    std::vector<int>(turned_away.size(), -1));
+    for (std::size_t k = 0; k < which.size(); ++k) {
+      if (facing[k].found) {
+        closest[which[k]] = facing[k];
+      }
+    }
+  }
   SurfaceDistances result;
   result.deviation.assign(points_cad.size(), kUnmatched);
   result.normals.assign(points_cad.size(), Eigen::Vector3d::Zero());

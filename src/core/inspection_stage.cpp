@@ -35,6 +35,17 @@ std::string describeDefect(const DefectRegion& defect, const InspectionResult& r
   return region.empty() ? std::string(text) : text + (" in region '" + region + "'");
 }
 
+// The size a region needs to count, as a PASS's reason states it.
+std::string regionSize(const DefectConfig& defects) {
+  std::string size = std::to_string(defects.min_points) + " or more connected points";
+  if (defects.min_area > 0.0) {
+    char area[48];
+    std::snprintf(area, sizeof(area), " over %.3g mm^2 or more", defects.min_area * 1e6);
+    size += area;
+  }
+  return size;
+}
+
 // Each point's band widened (by u > 0) or narrowed (u < 0). A band that narrowing empties holds
 // no deviation but 0 exactly: every point there lies outside it, so nothing there can be proven
 // to conform (ISO 14253-1), while it still judges the other points.
@@ -134,12 +145,11 @@ void judgeWithUncertainty(const PipelineConfig& config, InspectionResult* result
   }
   if (zones.regions_outside_acceptance == 0 && zones.inside_acceptance_fraction >= min_inside) {
     result->verdict = Verdict::kPass;
-    result->verdict_reason = "no region of " + std::to_string(config.defects.min_points) +
-                             " or more connected points outside the acceptance zone " + acceptance +
-                             " (the tolerance band narrowed by " + u +
-                             ": conformance proven, ISO 14253-1); " +
-                             std::to_string(zones.inside_acceptance_fraction) + " of " +
-                             std::to_string(result->deviation.evaluated) + " points inside it";
+    result->verdict_reason =
+        "no region of " + regionSize(config.defects) + " outside the acceptance zone " +
+        acceptance + " (the tolerance band narrowed by " + u +
+        ": conformance proven, ISO 14253-1); " + std::to_string(zones.inside_acceptance_fraction) +
+        " of " + std::to_string(result->deviation.evaluated) + " points inside it";
     return;
   }
   result->verdict_reason =
@@ -219,6 +229,7 @@ void noteChordError(const Model& model,
 // Deviation, statistics, shape deviation and defect regions of a registered scan.
 void measurePart(const Model& model,
                  const Scan& scan,
+                 const Points& point_normals,
                  const DescriptorResult& descriptors,
                  const PipelineConfig& config,
                  InspectionResult* result) {
@@ -227,9 +238,17 @@ void measurePart(const Model& model,
   for (std::size_t i = 0; i < scan.points.size(); ++i) {
     map.points[i] = result->T_cad_scan * scan.points[i];
   }
+  Points normals_cad;
+  normals_cad.reserve(point_normals.size());
+  for (const Eigen::Vector3d& normal : point_normals) {
+    normals_cad.push_back(result->T_cad_scan.linear() * normal);
+  }
   const double diagonal = model.bounds().diagonal();
-  SurfaceDistances distances =
-      measureDeviation(model, map.points, config.deviation.max_distance_ratio * diagonal);
+  SurfaceDistances distances = measureDeviation(model,
+                                                map.points,
+                                                config.deviation.max_distance_ratio * diagonal,
+                                                normals_cad,
+                                                config.deviation.facing_tolerance_deg);
   map.deviation = std::move(distances.deviation);
   result->pose_uncertainty = estimatePoseUncertainty(map.points,
                                                      distances.normals,
@@ -353,11 +372,10 @@ void judgePart(const PipelineConfig& config, InspectionResult* result) {
     return;
   }
   result->verdict = Verdict::kPass;
-  result->verdict_reason = "no region of " + std::to_string(config.defects.min_points) +
-                           " or more connected points outside the tolerance band " + band + "; " +
-                           std::to_string(stats.in_tolerance_fraction) + " of " +
-                           std::to_string(stats.evaluated) + " points inside it, deviation " +
-                           formatLength(stats.min) + " to " + formatLength(stats.max);
+  result->verdict_reason =
+      "no region of " + regionSize(config.defects) + " outside the tolerance band " + band + "; " +
+      std::to_string(stats.in_tolerance_fraction) + " of " + std::to_string(stats.evaluated) +
+      " points inside it, deviation " + formatLength(stats.min) + " to " + formatLength(stats.max);
 }
 
 // Each comparison point's verdict; one that fails fails the part, one not shown or within the

@@ -17,8 +17,11 @@ namespace freeform_inspection::internal {
 std::string formatLength(double metres);
 
 /// Deviation, statistics, shape deviation and defect regions of a registered scan (CAD frame).
+/// `point_normals`: empty, or each scan point's outward normal (scan frame), which the deviation
+/// measures it along (DeviationConfig::facing_tolerance_deg).
 void measurePart(const Model& model,
                  const Scan& scan,
+                 const Points& point_normals,
                  const DescriptorResult& descriptors,
                  const PipelineConfig& config,
                  InspectionResult* result);

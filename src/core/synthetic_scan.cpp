@@ -18,6 +18,7 @@ constexpr double kFacingThreshold = 0.05;  // n·d above this counts as seen by 
 constexpr double kRayOffsetRatio = 1e-6;   // × L: ray start off the surface, past its own face
 constexpr double kOutlierBoxMargin = 0.1;  // outlier box: surface box grown by 10 % per side
 constexpr int kMaxRounds = 8;              // partial views: sampling rounds before giving up
+constexpr double kDefectFacingCos = 0.5;   // a defect moves the surface facing within 60° of it
 
 // The std:: distributions are implementation-defined, mt19937_64's raw output is not: converting
 // it by hand makes a case the same with any standard library.
@@ -220,6 +221,23 @@ SyntheticScan makeSyntheticScan(const MeshQuery& cad, const SyntheticScanConfig&
   result.view_direction = config.partial ? view : Eigen::Vector3d::Zero();
   result.outliers = outliers;
   return result;
+}
+
+std::size_t pressDefect(const MeshQuery& cad, const SurfaceDefect& defect, SyntheticScan* scan) {
+  const Eigen::Vector3d facing = cad.closest(defect.centre).normal;
+  const Eigen::Matrix3d R_scan_cad = scan->T_cad_scan.linear().transpose();
+  const std::size_t surface = scan->scan.points.size() - scan->outliers;
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < surface; ++i) {
+    Eigen::Vector3d& p = scan->scan.points[i];
+    const ClosestPoint on = cad.closest(scan->T_cad_scan * p);
+    const double displacement = defectDisplacement(defect, on.point);
+    if (displacement != 0.0 && on.normal.dot(facing) > kDefectFacingCos) {
+      p += displacement * (R_scan_cad * on.normal);
+      ++moved;
+    }
+  }
+  return moved;
 }
 
 }  // namespace freeform_inspection

@@ -6,6 +6,7 @@
 #include "freeform_inspection/defects.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -232,6 +233,37 @@ TEST(Defects, SmallRegionsAndUnmatchedPointsAreNotDefects) {
       findDefects(scan.points, scan.faces, scan.deviation, band(1e-4), config).regions.empty());
 }
 
+// A region under defects.min_area is dropped whatever its point count, on a mesh and on a cloud,
+// and its points belong to no region; a larger one stays, first in the list.
+TEST(Defects, RegionsUnderTheMinimumAreaAreNotDefects) {
+  const SurfaceDefect small{Eigen::Vector3d(-0.02, 0.0, 0.0), 0.002, -6e-4};
+  const SurfaceDefect large{Eigen::Vector3d(0.02, 0.0, 0.0), 0.005, 4e-4};
+  const double small_area = discAbove(small, 1e-4);
+  const double large_area = discAbove(large, 1e-4);
+  const PlaneScan scan = scanPlane({small, large}, 0.0, 1);
+  for (const bool mesh : {true, false}) {
+    SCOPED_TRACE(mesh ? "mesh" : "cloud");
+    const Triangles faces = mesh ? scan.faces : Triangles();
+    DefectConfig config;
+    const DefectResult both = findDefects(scan.points, faces, scan.deviation, band(1e-4), config);
+    ASSERT_EQ(both.regions.size(), 2u);
+    EXPECT_EQ(both.regions[0].sign, -1);  // the deeper one first
+    config.min_area = std::sqrt(small_area * large_area);
+    std::printf("  areas %.3g and %.3g mm^2, min_area %.3g mm^2\n",
+                small_area * 1e6,
+                large_area * 1e6,
+                config.min_area * 1e6);
+    const DefectResult kept = findDefects(scan.points, faces, scan.deviation, band(1e-4), config);
+    ASSERT_EQ(kept.regions.size(), 1u);
+    EXPECT_EQ(kept.regions[0].sign, 1);
+    EXPECT_NEAR(kept.regions[0].area, large_area, 0.1 * large_area);
+    EXPECT_EQ(kept.regions[0].points, both.regions[1].points);
+    for (std::size_t i = 0; i < scan.points.size(); ++i) {
+      EXPECT_EQ(kept.point_region[i], both.point_region[i] == 1 ? 0 : -1);
+    }
+  }
+}
+
 // A bump across the border of a named region (regions.h): its points are judged against their
 // own region's band, and points of two regions never join one defect.
 TEST(Defects, ABumpAcrossARegionsBorderIsJudgedOnEachSideByThatSidesBand) {
@@ -279,6 +311,12 @@ TEST(Defects, ConfigurationIsChecked) {
   config.min_points = 0;
   config.neighbour_spacings = 0.5;
   EXPECT_EQ(validate(config).size(), 2u);
+  config = DefectConfig();
+  for (const double area : {-1e-6, std::numeric_limits<double>::quiet_NaN()}) {
+    config.min_area = area;
+    ASSERT_EQ(validate(config).size(), 1u);
+    EXPECT_NE(validate(config)[0].find("defects.min_area"), std::string::npos);
+  }
 }
 
 }  // namespace

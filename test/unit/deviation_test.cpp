@@ -55,6 +55,42 @@ TEST(Deviation, BoxDistancesAtFacesEdgesAndCornersAreExact) {
   EXPECT_NEAR(d.deviation[4], -0.05, 1e-9);
 }
 
+// A 1 mm plate seen from above: a point dented 0.8 mm into it lies nearer the bottom face,
+// which the closest surface alone would read as -0.2 mm, a quarter of the dent (and a point
+// pushed through the wall as a bump). With the point's outward
+// normal it reads against its own face, -0.8 mm; points the top face explains, an edge's
+// rounding side-on to the normal, or a zero normal are as without normals.
+TEST(Deviation, ANormalReadsAThinWallDentedPastItsMiddleAgainstItsOwnSide) {
+  const Model plate(test::makeBox(Eigen::Vector3d(0.02, 0.015, 0.0005)), "plate", "test");
+  const Eigen::Vector3d up(0.0, 0.0, 1.0);
+  const Points points = {{0.0, 0.0, -0.0003},      // top face dented by 0.8 mm
+                         {0.005, 0.0, 0.0007},     // 0.2 mm above the top face
+                         {0.0, 0.0, -0.0003},      // the dented point without a normal
+                         {0.0202, 0.0, -0.0003}};  // 0.2 mm beside the +x edge, normal up
+  const Points normals = {up, up, Eigen::Vector3d::Zero(), up};
+  const SurfaceDistances plain = measureDeviation(plate, points, 0.01);
+  const SurfaceDistances facing = measureDeviation(plate, points, 0.01, normals, 80.0);
+  EXPECT_NEAR(plain.deviation[0], -0.0002, 1e-9);
+  EXPECT_NEAR(facing.deviation[0], -0.0008, 1e-9);
+  EXPECT_NEAR(facing.normals[0].z(), 1.0, 1e-12);
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    EXPECT_EQ(facing.deviation[i], plain.deviation[i]) << "point " << i;
+    EXPECT_EQ(facing.faces[i], plain.faces[i]) << "point " << i;
+  }
+  EXPECT_NEAR(facing.deviation[1], 0.0002, 1e-9);
+  EXPECT_NEAR(facing.deviation[3], 0.0002, 1e-9);
+  // 180 degrees asks for the closest surface whatever its way.
+  EXPECT_EQ(measureDeviation(plate, points, 0.01, normals, 180.0).deviation[0], plain.deviation[0]);
+  // Normals most of the scan turns into the material (an inward winding) are not used.
+  Points many(20, Eigen::Vector3d(0.0, 0.0, 0.0006));
+  Points inward(20, -up);
+  many.push_back(points[0]);
+  inward.push_back(up);
+  const SurfaceDistances ignored = measureDeviation(plate, many, 0.01, inward, 80.0);
+  EXPECT_NEAR(ignored.deviation.back(), -0.0002, 1e-9);
+  EXPECT_NEAR(ignored.deviation.front(), 0.0001, 1e-9);
+}
+
 TEST(Deviation, SphereWithinTheTessellationSagitta) {
   const double radius = 0.1;
   const TriangleMesh mesh = test::icosphere(radius, 5);

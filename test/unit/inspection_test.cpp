@@ -13,6 +13,7 @@
 #include "test_shapes.h"
 #include <gtest/gtest.h>
 
+#include "freeform_inspection/deviation.h"
 #include "freeform_inspection/model.h"
 #include "freeform_inspection/pipeline.h"
 #include "freeform_inspection/surface_defect.h"
@@ -77,15 +78,7 @@ SurfaceDefect pressDent(SyntheticScan* truth, double area_share, double depth) {
   dent.centre = cad.closest(truth->T_cad_scan * truth->scan.points[nearest]).point;
   dent.radius = std::sqrt(area_share * blade().topology().area / kPi);
   dent.depth = depth;
-  // Only the face the dent is pressed into moves, not the far side of the thin blade.
-  const Eigen::Vector3d facing = cad.closest(dent.centre).normal;
-  const Eigen::Matrix3d R_scan_cad = truth->T_cad_scan.linear().transpose();
-  for (auto& p : truth->scan.points) {
-    const ClosestPoint on = cad.closest(truth->T_cad_scan * p);
-    if (on.normal.dot(facing) > 0.5) {
-      p += defectDisplacement(dent, on.point) * (R_scan_cad * on.normal);
-    }
-  }
+  EXPECT_GT(pressDefect(cad, dent, truth), 0u);
   return dent;
 }
 
@@ -693,6 +686,125 @@ TEST(Inspection, ABandNarrowerThanTheNoiseIsFlagged) {
         flagged || warning.find("narrower than 3x the fit's residual noise") != std::string::npos;
   }
   EXPECT_TRUE(flagged);
+}
+
+// The inspection's detection limits at a metrology scanner's noise (docs/accuracy.md), from an
+// unknown pose: a dent inside the band is no defect, one half as deep again as the band is
+// found where it lies, its peak read about a σ deeper than it is (the deepest of its noisy
+// points); a drawing allowing flaws of that area passes it (defects.min_area); and the
+// registration adds to each deviation a small fraction of the noise.
+TEST(Inspection, DentsBeyondTheBandAreFoundAndTheRegistrationAddsLittleToTheDeviation) {
+  const double sigma = 0.0002 * diagonal();
+  const double band = 4.0 * sigma;
+  const PipelineConfig config = withBand(band);
+  for (std::uint64_t seed = 11; seed <= 12; ++seed) {
+    const SyntheticScan clean = makeCase(seed, 0.0002, false);
+    const InspectionResult reference = inspect(blade(), clean.scan, config);
+    ASSERT_EQ(reference.registration, RegistrationStatus::kOk) << reference.status.message;
+    EXPECT_EQ(reference.verdict, Verdict::kPass) << reference.verdict_reason;
+
+    // Every deviation at the registered pose against the same point's at the true pose.
+    const DeviationMap& map = reference.deviation_map;
+    const Eigen::Isometry3d T_true_registered = clean.T_cad_scan * reference.T_cad_scan.inverse();
+    Points at_truth;
+    for (const auto& p : map.points) {
+      at_truth.push_back(T_true_registered * p);
+    }
+    Points normals;  // the scanner's, which the pipeline measures along
+    for (const auto& n : clean.scan.normals) {
+      normals.push_back(clean.T_cad_scan.linear() * n);
+    }
+    const SurfaceDistances exact = measureDeviation(
+        blade(), at_truth, 0.05 * diagonal(), normals, config.deviation.facing_tolerance_deg);
+    double sum_sq = 0.0, largest = 0.0;
+    std::size_t compared = 0;
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      const double added = static_cast<double>(map.deviation[i]) - exact.deviation[i];
+      if (std::isfinite(added)) {
+        sum_sq += added * added;
+        largest = std::max(largest, std::abs(added));
+        ++compared;
+      }
+    }
+    const double added_rms =
+        std::sqrt(sum_sq / static_cast<double>(std::max<std::size_t>(1, compared)));
+    std::printf("  the registration adds RMS %.3g sigma, at most %.3g sigma (%zu points)\n",
+                added_rms / sigma,
+                largest / sigma,
+                compared);
+    EXPECT_GT(compared, clean.scan.points.size() * 99 / 100);
+    EXPECT_LT(added_rms, 0.1 * sigma);
+    EXPECT_LT(largest, 0.5 * sigma);
+
+    for (const double depth_in_bands : {0.8, 1.5}) {
+      SyntheticScan dented = clean;
+      const SurfaceDefect dent = pressDent(&dented, 0.03, -depth_in_bands * band);
+      const InspectionResult result = inspect(blade(), dented.scan, config);
+      ASSERT_EQ(result.registration, RegistrationStatus::kOk) << result.status.message;
+      std::printf("  dent r %.3g mm, %.2f bands deep: %s, %zu regions",
+                  dent.radius * 1e3,
+                  depth_in_bands,
+                  toString(result.verdict),
+                  result.defects.size());
+      if (depth_in_bands < 1.0) {
+        std::printf("\n");
+        EXPECT_EQ(result.verdict, Verdict::kPass) << result.verdict_reason;
+        EXPECT_TRUE(result.defects.empty());
+        continue;
+      }
+      ASSERT_EQ(result.defects.size(), 1u);
+      const DefectRegion& found = result.defects.front();
+      std::printf("; peak %.3g sigma from the depth, %.3g mm from the centre\n",
+                  (found.peak - dent.depth) / sigma,
+                  (found.centroid - dent.centre).norm() * 1e3);
+      EXPECT_EQ(result.verdict, Verdict::kFail);
+      EXPECT_EQ(found.sign, -1);
+      EXPECT_LT((found.centroid - dent.centre).norm(), 0.5 * dent.radius);
+      EXPECT_LT(found.peak, dent.depth + sigma);
+      EXPECT_GT(found.peak, dent.depth - 4.0 * sigma);
+
+      // A drawing that allows flaws of twice its area passes it, and says by what rule.
+      PipelineConfig allowing = config;
+      allowing.defects.min_area = 2.0 * found.area;
+      const InspectionResult allowed = inspectAt(blade(), dented.scan, result.T_cad_scan, allowing);
+      EXPECT_EQ(allowed.verdict, Verdict::kPass) << allowed.verdict_reason;
+      EXPECT_NE(allowed.verdict_reason.find("mm^2 or more"), std::string::npos)
+          << allowed.verdict_reason;
+    }
+  }
+}
+
+// A 1 mm plate scanned from above with the scanner's normals, a dent 0.8 mm deep pressed into
+// its top: deeper than half the wall, so its points lie nearer the bottom face. Measured along
+// their normals they read the dent's depth, not the 0.2 mm left to the far side
+// (deviation.facing_tolerance_deg); with 180 degrees they read the far side.
+TEST(Inspection, AThinWallDentedPastItsMiddleReadsItsDepthAlongTheScannersNormals) {
+  const Model plate(test::makeBox(Eigen::Vector3d(0.02, 0.015, 0.0005)), "plate", "test");
+  const SurfaceDefect dent{Eigen::Vector3d(0.0, 0.0, 0.0005), 0.004, -0.0008};
+  Scan scan;
+  for (int i = -38; i <= 38; ++i) {
+    for (int j = -28; j <= 28; ++j) {
+      const Eigen::Vector3d top(0.0005 * i, 0.0005 * j, 0.0005);
+      scan.points.push_back(top + defectDisplacement(dent, top) * Eigen::Vector3d::UnitZ());
+      scan.normals.push_back(Eigen::Vector3d::UnitZ());
+    }
+  }
+  PipelineConfig config = withBand(0.0001);
+  const InspectionResult result = inspectAt(plate, scan, Eigen::Isometry3d::Identity(), config);
+  ASSERT_EQ(result.defects.size(), 1u) << result.verdict_reason;
+  std::printf("  along the normals: peak %.4g mm over %.3g mm^2\n",
+              result.defects[0].peak * 1e3,
+              result.defects[0].area * 1e6);
+  EXPECT_EQ(result.verdict, Verdict::kFail);
+  EXPECT_NEAR(result.defects[0].peak, -0.0008, 1e-7);
+  EXPECT_LT(result.deviation.min, -0.0008 + 1e-7);
+
+  config.deviation.facing_tolerance_deg = 180.0;
+  const InspectionResult nearest = inspectAt(plate, scan, Eigen::Isometry3d::Identity(), config);
+  ASSERT_FALSE(nearest.defects.empty());
+  std::printf("  to the nearest face: peak %.4g mm\n", nearest.defects[0].peak * 1e3);
+  // No reading can be deeper than half the wall: the dent is read at its mid-wall points.
+  EXPECT_NEAR(nearest.defects[0].peak, -0.0005, 1e-5);
 }
 
 TEST(Inspection, ProgressReportsEveryStageAndCancelStopsBeforeOne) {
