@@ -112,7 +112,9 @@ struct SurfaceDistances {
 /// unmatched.
 /// @param normals_cad empty, or each point's outward normal in the CAD frame: the point is then
 /// measured to the closest surface turned less than `facing_deg` from it (and to the closest
-/// surface whatever its way when none within `max_distance` is, or its normal is zero).
+/// surface whatever its way when none within `max_distance` is, or its normal is zero). Normals
+/// that more than half the points turn away from their closest surface (an inward winding) are
+/// not used.
 SurfaceDistances measureDeviation(const Model& model,
                                   const Points& points_cad,
                                   double max_distance,

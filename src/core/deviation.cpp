@@ -117,10 +117,9 @@ SurfaceDistances measureDeviation(const Model& model,
                                   double facing_deg) {
   std::vector<ClosestPoint> closest = model.query().closest(points_cad, max_distance);
   if (facing_deg < 180.0 && normals_cad.size() == points_cad.size()) {
-    // Only where the closest surface faces against the point (the far side of a thin wall: as
-    // far turned from its normal as the surfaces accepted are near it) is it looked for again
-    // among the surfaces facing the point's way; a surface side-on to it (an edge's rounding)
-    // is its own.
+    // Each point meets the closest surface facing its way, as ICP paired it: looked for again
+    // only where the closest surface of all is turned away from it (the far side of a thin
+    // wall, mostly), and kept when none facing its way lies within reach.
     constexpr double kDegree = 3.14159265358979323846 / 180.0;
     const double min_cos = std::cos(facing_deg * kDegree);
     Points turned_away;
@@ -128,7 +127,7 @@ SurfaceDistances measureDeviation(const Model& model,
     std::vector<std::size_t> which;
     for (std::size_t i = 0; i < points_cad.size(); ++i) {
       if (closest[i].found && normals_cad[i].squaredNorm() > 0.0 &&
-          closest[i].normal.dot(normals_cad[i]) < -min_cos * normals_cad[i].norm()) {
+          closest[i].normal.dot(normals_cad[i]) < min_cos * normals_cad[i].norm()) {
         turned_away.push_back(points_cad[i]);
         their_normals.push_back(normals_cad[i]);
         which.push_back(i);

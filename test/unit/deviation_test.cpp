@@ -58,16 +58,16 @@ TEST(Deviation, BoxDistancesAtFacesEdgesAndCornersAreExact) {
 // A 1 mm plate seen from above: a point dented 0.8 mm into it lies nearer the bottom face,
 // which the closest surface alone would read as -0.2 mm, a quarter of the dent (and a point
 // pushed through the wall as a bump). With the point's outward
-// normal it reads against its own face, -0.8 mm; points the top face explains, an edge's
-// rounding side-on to the normal, or a zero normal are as without normals.
+// normal it reads against its own face, -0.8 mm; points their closest face explains (above the
+// top, beside the +x side with its normal) or with a zero normal are as without normals.
 TEST(Deviation, ANormalReadsAThinWallDentedPastItsMiddleAgainstItsOwnSide) {
   const Model plate(test::makeBox(Eigen::Vector3d(0.02, 0.015, 0.0005)), "plate", "test");
   const Eigen::Vector3d up(0.0, 0.0, 1.0);
   const Points points = {{0.0, 0.0, -0.0003},      // top face dented by 0.8 mm
                          {0.005, 0.0, 0.0007},     // 0.2 mm above the top face
                          {0.0, 0.0, -0.0003},      // the dented point without a normal
-                         {0.0202, 0.0, -0.0003}};  // 0.2 mm beside the +x edge, normal up
-  const Points normals = {up, up, Eigen::Vector3d::Zero(), up};
+                         {0.0202, 0.0, -0.0003}};  // 0.2 mm beside the +x side
+  const Points normals = {up, up, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()};
   const SurfaceDistances plain = measureDeviation(plate, points, 0.01);
   const SurfaceDistances facing = measureDeviation(plate, points, 0.01, normals, 80.0);
   EXPECT_NEAR(plain.deviation[0], -0.0002, 1e-9);

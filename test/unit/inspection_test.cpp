@@ -690,7 +690,7 @@ TEST(Inspection, ABandNarrowerThanTheNoiseIsFlagged) {
 
 // The inspection's detection limits at a metrology scanner's noise (docs/accuracy.md), from an
 // unknown pose: a dent inside the band is no defect, one half as deep again as the band is
-// found where it lies, its peak read about a σ deeper than it is (the deepest of its noisy
+// found where it lies, its peak read one to two σ deeper than it is (the deepest of its noisy
 // points); a drawing allowing flaws of that area passes it (defects.min_area); and the
 // registration adds to each deviation a small fraction of the noise.
 TEST(Inspection, DentsBeyondTheBandAreFoundAndTheRegistrationAddsLittleToTheDeviation) {
