@@ -133,7 +133,7 @@ SurfaceDistances measureDeviation(const Model& model,
         which.push_back(i);
       }
     }
-    // Normals that most of the scan turns against its closest surface point into the
+    // Normals that most of the scan turns away from its closest surface point into the
     // material (an inward winding): they tell nothing of which side a point is on.
     std::size_t found = 0;
     for (const ClosestPoint& c : closest) {
