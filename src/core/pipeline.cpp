@@ -1314,34 +1314,17 @@ void alignToDatumTargets(const Model& model,
 }
 
 // The normals the deviation is measured along: the scan's own (a scanner's, a range image's
-// view, a delivered mesh's winding summed over its faces), never the analysed ones, which a
-// thinned dense cloud shares among the points of a voxel, both sides of a thin wall included.
-// Empty when the scan has none of them.
-Points ownNormals(const Scan& scan, const ViewHints& hints) {
+// view, a delivered mesh's winding, which the mesh estimator sums over its faces into
+// `analysed`), never those a cloud's analysis estimated: a thinned dense cloud shares them
+// among the points of a voxel, both sides of a thin wall included. Empty when it has none.
+Points ownNormals(const Scan& scan, const ViewHints& hints, const Points& analysed) {
   if (scan.normals.size() == scan.points.size()) {
     return scan.normals;
   }
   if (hints.normals.size() == scan.points.size()) {
     return hints.normals;
   }
-  Points normals;
-  if (!scan.faces.empty()) {
-    normals.assign(scan.points.size(), Eigen::Vector3d::Zero());
-    for (const Eigen::Vector3i& face : scan.faces) {
-      const Eigen::Vector3d& a = scan.points[static_cast<std::size_t>(face[0])];
-      const Eigen::Vector3d twice_area =
-          (scan.points[static_cast<std::size_t>(face[1])] - a)
-              .cross(scan.points[static_cast<std::size_t>(face[2])] - a);
-      for (int c = 0; c < 3; ++c) {
-        normals[static_cast<std::size_t>(face[c])] += twice_area;  // area-weighted
-      }
-    }
-    for (Eigen::Vector3d& normal : normals) {
-      normal =
-          normal.allFinite() && normal.norm() > 0.0 ? normal.normalized() : Eigen::Vector3d::Zero();
-    }
-  }
-  return normals;
+  return scan.faces.empty() ? Points() : analysed;
 }
 
 // clean → descriptors → registration → deviation, stopping at the first stage that is not ok
@@ -1442,7 +1425,12 @@ void runStages(const Model& model,
     fitToAlignedRegions(model, points, point_normals, config, result);
   }
   alignToDatumTargets(model, points, config, result);
-  measurePart(model, cleaned.scan, ownNormals(cleaned.scan, hints), descriptors, config, result);
+  measurePart(model,
+              cleaned.scan,
+              ownNormals(cleaned.scan, hints, point_normals),
+              descriptors,
+              config,
+              result);
   if (alignment.mode == Alignment::Mode::kFixed) {
     result->pose_uncertainty = PoseUncertainty();  // no fit, so no spread of one
   }
