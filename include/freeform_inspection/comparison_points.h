@@ -40,6 +40,18 @@ struct ComparisonPointConfig {
   std::string datum;
 };
 
+/// The order in which the datums of the targets fix the pose (datum_alignment.h): the drawing's
+/// datum reference frame, |A|B|C|. The primary datum's targets are fitted first, as far as they
+/// hold the pose; the secondary's then fix what the primary left free, and so on. By default the
+/// labels in alphabetical order; `alike` fits every target at once by least squares, weighted
+/// alike (an RPS scheme whose over-held axes are best-fitted).
+struct DatumPrecedence {
+  bool alike = false;
+  /// The datums, primary first; empty (and not `alike`): the targets' labels in alphabetical
+  /// order. When given, it must name every target's datum, and only those.
+  std::vector<std::string> order;
+};
+
 /// What the scan shows at one comparison point.
 struct ComparisonPointResult {
   std::string name;
@@ -104,15 +116,23 @@ PlaceReading readAround(const PlacedPoint& place,
 /// when valid. Names must be unique and non-empty, positions finite, radii finite and ≥ 0.
 std::vector<std::string> validate(const std::vector<ComparisonPointConfig>& points);
 
+/// @brief One message per fault of a precedence against the targets `points` name: a datum
+/// listed twice or without targets, a target's datum not listed; empty when valid.
+std::vector<std::string> validate(const DatumPrecedence& precedence,
+                                  const std::vector<ComparisonPointConfig>& points);
+
 /// Result of reading a comparison points file.
 struct ComparisonPointsLoadResult {
   Status status;  ///< kInvalidInput naming every bad or unknown key
   std::vector<ComparisonPointConfig> points;
+  DatumPrecedence datum_precedence;
 };
 
 /// @brief Reads comparison points from YAML: a top-level `points:` list of maps with `name`,
-/// `position: [x, y, z]` (metres in the CAD frame), optional `tolerance: {upper, lower}` and
-/// `radius` (metres). Unknown keys are errors, as in the configuration file.
+/// `position: [x, y, z]` (metres in the CAD frame), optional `tolerance: {upper, lower}`,
+/// `radius` (metres) and `datum`; beside the list, an optional `datum_precedence:` list of
+/// datums, primary first, or `none` (DatumPrecedence::alike). Unknown keys are errors, as in
+/// the configuration file.
 ComparisonPointsLoadResult parseComparisonPoints(const std::string& yaml_text);
 
 /// @brief parseComparisonPoints() of a file; an unreadable file is kInvalidInput naming it.

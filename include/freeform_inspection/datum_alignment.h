@@ -22,9 +22,12 @@
 ///
 /// A target on a surface fixes one degree of freedom: the scan's deviation there along the CAD
 /// normal. Six targets whose normals hold all six motions fix the pose (3-2-1: three on the
-/// primary datum's surface, two on the secondary's, one on the tertiary's); more are fitted by
-/// least squares. Each round reads every target as a comparison point (readAround()), solves the
-/// linearized motion that brings the readings to zero, and moves the pose by it.
+/// primary datum's surface, two on the secondary's, one on the tertiary's). More are fitted in
+/// the datums' order of precedence (DatumPrecedence): the primary's targets by least squares
+/// over every motion they hold, the secondary's over the motions the primary left free, and so
+/// on; or all at once, weighted alike. Each round reads every target as a comparison point
+/// (readAround()), solves the linearized motion that brings the readings to zero, and moves the
+/// pose by it.
 
 namespace freeform_inspection {
 
@@ -64,6 +67,9 @@ struct DatumAlignment {
   double rotation_std_deg = std::numeric_limits<double>::quiet_NaN();
   double translation_std = std::numeric_limits<double>::quiet_NaN();
   std::vector<DatumTargetReading> targets;  ///< in the configuration's order
+  /// The datums in the order they fixed the pose, primary first; empty when every target was
+  /// weighted alike (DatumPrecedence::alike).
+  std::vector<std::string> precedence;
 };
 
 /// Targets fewer than this cannot fix a rigid pose.
@@ -77,11 +83,22 @@ constexpr int kMaxDatumRounds = 20;
 /// @brief Whether some of `points` names a datum (is a datum target).
 bool hasDatumTargets(const std::vector<ComparisonPointConfig>& points);
 
+/// @brief The datums of `points` in the order they fix the pose: `precedence.order` when given,
+/// else their labels in alphabetical order; empty when `precedence.alike`.
+std::vector<std::string> datumOrder(const DatumPrecedence& precedence,
+                                    const std::vector<ComparisonPointConfig>& points);
+
+/// @brief The order as reports and the configuration hash give it: "A, B, C", or "none (every
+/// target alike)".
+std::string datumPrecedenceText(const DatumPrecedence& precedence,
+                                const std::vector<ComparisonPointConfig>& points);
+
 /// @brief The pose at which the scan's surface passes through every datum target, starting
 /// from `T_cad_scan` (the best fit). Comparison points without a datum are ignored; without
 /// any, nothing is done (`requested` false). When the targets are fewer than six, leave a
 /// motion free, lie off the CAD or are not all read, `aligned` is false and `message` says
-/// which; the caller keeps its pose.
+/// which; the caller keeps its pose. Where the targets hold a motion more than once, the datum
+/// first in `precedence` fixes it (validate(const DatumPrecedence&, ...) must pass).
 /// @param scan_points the scan in its own frame [m]
 /// @param default_radius [m] the radius of targets without one (the model's cell)
 /// @param max_distance [m] scan points farther from the CAD are not read (the deviation map's
@@ -90,6 +107,7 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
                              const Points& scan_points,
                              const Eigen::Isometry3d& T_cad_scan,
                              const std::vector<ComparisonPointConfig>& points,
+                             const DatumPrecedence& precedence,
                              double default_radius,
                              double max_distance);
 

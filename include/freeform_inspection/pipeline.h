@@ -68,6 +68,9 @@ struct PipelineConfig {
   /// Named places read and judged one by one (comparison_points.h); like the regions, from a
   /// file (CLI --points, the node's ~points_file).
   std::vector<ComparisonPointConfig> comparison_points;
+  /// The order the datum targets among them fix the pose in (datum_alignment.h); from the same
+  /// file's `datum_precedence:`.
+  DatumPrecedence datum_precedence;
 };
 
 /// @brief Checks every field of the configuration.

@@ -55,6 +55,30 @@ ComparisonPointConfig parsePoint(const YAML::Node& node, std::size_t position) {
   return point;
 }
 
+// The `datum_precedence:` beside the points: the datums, primary first, or `none`.
+DatumPrecedence parsePrecedence(const YAML::Node& node) {
+  DatumPrecedence precedence;
+  if (!node) {
+    return precedence;
+  }
+  if (node.IsScalar() && node.as<std::string>() == "none") {
+    precedence.alike = true;
+    return precedence;
+  }
+  const std::string expected =
+      "datum_precedence must list the datums, primary first ([A, B, C]), or be none";
+  if (!node.IsSequence() || node.size() == 0) {
+    throw std::runtime_error(expected);
+  }
+  for (const auto& datum : node) {
+    if (!datum.IsScalar()) {
+      throw std::runtime_error(expected);
+    }
+    precedence.order.push_back(datum.as<std::string>());
+  }
+  return precedence;
+}
+
 double standardDeviation(const std::vector<double>& values) {
   double mean = 0.0;
   for (const double v : values) {
@@ -96,15 +120,68 @@ std::vector<std::string> validate(const std::vector<ComparisonPointConfig>& poin
   return errors;
 }
 
+std::vector<std::string> validate(const DatumPrecedence& precedence,
+                                  const std::vector<ComparisonPointConfig>& points) {
+  std::vector<std::string> errors;
+  if (precedence.alike) {
+    return errors;
+  }
+  std::set<std::string> listed;
+  for (const std::string& datum : precedence.order) {
+    if (datum.empty()) {
+      errors.push_back("datum_precedence lists an empty datum");
+    } else if (!listed.insert(datum).second) {
+      errors.push_back("datum_precedence lists datum '" + datum + "' twice");
+    } else if (std::none_of(points.begin(), points.end(), [&](const ComparisonPointConfig& p) {
+                 return p.datum == datum;
+               })) {
+      errors.push_back("datum_precedence lists datum '" + datum +
+                       "', which no comparison point is a target of");
+    }
+  }
+  if (precedence.order.empty()) {
+    return errors;  // the labels in alphabetical order
+  }
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    if (!points[p].datum.empty() && listed.count(points[p].datum) == 0) {
+      errors.push_back(label(points[p], p) + ": datum '" + points[p].datum +
+                       "' is not in datum_precedence");
+    }
+  }
+  return errors;
+}
+
 ComparisonPointsLoadResult parseComparisonPoints(const std::string& yaml_text) {
   ComparisonPointsLoadResult result;
-  result.status = internal::parseYamlList(
-      yaml_text,
-      "points",
-      "comparison points",
-      parsePoint,
-      [](const auto& items) { return validate(items); },
-      &result.points);
+  std::string precedence_error;
+  try {
+    const YAML::Node root = YAML::Load(yaml_text);
+    if (root.IsMap()) {
+      result.datum_precedence = parsePrecedence(root["datum_precedence"]);
+    }
+  } catch (const YAML::Exception&) {
+    // parseYamlList reports the file's syntax
+  } catch (const std::runtime_error& e) {
+    precedence_error = e.what();
+  }
+  result.status = internal::parseYamlList(yaml_text,
+                                          "points",
+                                          "comparison points",
+                                          parsePoint,
+                                          [&](const auto& items) {
+                                            std::vector<std::string> errors = validate(items);
+                                            std::vector<std::string> order =
+                                                precedence_error.empty()
+                                                    ? validate(result.datum_precedence, items)
+                                                    : std::vector<std::string>{precedence_error};
+                                            errors.insert(errors.end(), order.begin(), order.end());
+                                            return errors;
+                                          },
+                                          &result.points,
+                                          {"datum_precedence"});
+  if (!result.status.ok()) {
+    result.datum_precedence = {};
+  }
   return result;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,78 @@ Eigen::MatrixXd constraints(const std::vector<Target>& targets,
     rows.block<1, 3>(r, 3) = p.normal.transpose();
   }
   return rows;
+}
+
+// The rows of each datum's targets, in the datums' order; one group of every row when alike.
+std::vector<std::vector<Eigen::Index>> datumGroups(const std::vector<Target>& targets,
+                                                   const std::vector<std::string>& order) {
+  if (order.empty()) {
+    std::vector<Eigen::Index> all(targets.size());
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      all[i] = static_cast<Eigen::Index>(i);
+    }
+    return {all};
+  }
+  std::vector<std::vector<Eigen::Index>> groups;
+  for (const std::string& datum : order) {
+    groups.emplace_back();
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      if (targets[i].config->datum == datum) {
+        groups.back().push_back(static_cast<Eigen::Index>(i));
+      }
+    }
+  }
+  return groups;
+}
+
+// The linear map S from the readings to cancel to the motion that cancels them, datum by datum
+// (least squares in order of precedence): each datum's rows are fitted by the motions the datums
+// before it left free, as far as they hold them (singular values from kMinDatumConditioning of
+// the scheme's strongest); what is still free then is fitted to every target at once. One group
+// of every row is plain least squares, S = the pseudo-inverse. Fixed by the nominal targets, so
+// computed once for every round.
+Eigen::MatrixXd precedenceSolve(const Eigen::MatrixXd& rows,
+                                const std::vector<std::vector<Eigen::Index>>& groups,
+                                double strongest) {
+  const Eigen::Index n = rows.rows();
+  Eigen::MatrixXd solve = Eigen::MatrixXd::Zero(6, n);
+  Eigen::MatrixXd free = Eigen::MatrixXd::Identity(6, 6);  // orthonormal columns
+  const auto fit = [&](const std::vector<Eigen::Index>& group) {
+    if (group.empty() || free.cols() == 0) {
+      return;
+    }
+    const auto size = static_cast<Eigen::Index>(group.size());
+    Eigen::MatrixXd group_rows(size, 6);
+    Eigen::MatrixXd picked = Eigen::MatrixXd::Zero(size, n);  // the group's readings
+    for (Eigen::Index r = 0; r < size; ++r) {
+      group_rows.row(r) = rows.row(group[static_cast<std::size_t>(r)]);
+      picked(r, group[static_cast<std::size_t>(r)]) = 1.0;
+    }
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(group_rows * free,
+                                                Eigen::ComputeThinU | Eigen::ComputeFullV);
+    const Eigen::VectorXd& values = svd.singularValues();
+    Eigen::Index held = 0;
+    while (held < values.size() && values(held) >= kMinDatumConditioning * strongest) {
+      ++held;
+    }
+    if (held == 0) {
+      return;
+    }
+    // What the group's readings ask after the datums before it, fitted within the free motions.
+    const Eigen::MatrixXd left = picked - group_rows * solve;
+    solve += free * svd.matrixV().leftCols(held) * values.head(held).cwiseInverse().asDiagonal() *
+             svd.matrixU().leftCols(held).transpose() * left;
+    free = (free * svd.matrixV().rightCols(free.cols() - held)).eval();
+  };
+  for (const std::vector<Eigen::Index>& group : groups) {
+    fit(group);
+  }
+  std::vector<Eigen::Index> all(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    all[static_cast<std::size_t>(i)] = i;
+  }
+  fit(all);
+  return solve;
 }
 
 // Reads every target at a pose. Only the points that can be read are queried on the CAD: with
@@ -155,9 +228,9 @@ std::string unread(const std::vector<Target>& targets, const std::vector<PlaceRe
 
 // How far the readings' noise leaves the frame free: each reading is a median of n points of
 // standard deviation s, variance (π/2)·s²/n for Gaussian noise, carried through the
-// least-squares solve (its pseudo-inverse P): Σ = P·diag(variances)·Pᵀ over the scaled turn
+// solve (its linear map S): Σ = S·diag(variances)·Sᵀ over the scaled turn
 // and the shift at the targets' centre. Reported for the least held axis of each.
-void frameSpread(const Eigen::JacobiSVD<Eigen::MatrixXd>& svd,
+void frameSpread(const Eigen::MatrixXd& solve,
                  const std::vector<PlaceReading>& readings,
                  double spread,
                  DatumAlignment* result) {
@@ -167,9 +240,7 @@ void frameSpread(const Eigen::JacobiSVD<Eigen::MatrixXd>& svd,
     const PlaceReading& r = readings[static_cast<std::size_t>(i)];
     variance(i) = 0.5 * kPi * r.spread * r.spread / static_cast<double>(r.points);
   }
-  const Eigen::MatrixXd inverse = svd.solve(Eigen::MatrixXd::Identity(n, n));  // 6 x n
-  const Eigen::Matrix<double, 6, 6> covariance =
-      inverse * variance.asDiagonal() * inverse.transpose();
+  const Eigen::Matrix<double, 6, 6> covariance = solve * variance.asDiagonal() * solve.transpose();
   const auto largest = [](const Eigen::Matrix3d& block) {
     return std::sqrt(std::max(
         0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(block).eigenvalues().maxCoeff()));
@@ -187,10 +258,40 @@ bool hasDatumTargets(const std::vector<ComparisonPointConfig>& points) {
   });
 }
 
+std::vector<std::string> datumOrder(const DatumPrecedence& precedence,
+                                    const std::vector<ComparisonPointConfig>& points) {
+  if (precedence.alike) {
+    return {};
+  }
+  if (!precedence.order.empty()) {
+    return precedence.order;
+  }
+  std::set<std::string> labels;
+  for (const ComparisonPointConfig& point : points) {
+    if (!point.datum.empty()) {
+      labels.insert(point.datum);
+    }
+  }
+  return {labels.begin(), labels.end()};
+}
+
+std::string datumPrecedenceText(const DatumPrecedence& precedence,
+                                const std::vector<ComparisonPointConfig>& points) {
+  if (precedence.alike) {
+    return "none (every target alike)";
+  }
+  std::string text;
+  for (const std::string& datum : datumOrder(precedence, points)) {
+    text += (text.empty() ? "" : ", ") + datum;
+  }
+  return text;
+}
+
 DatumAlignment alignToDatums(const MeshQuery& cad,
                              const Points& scan_points,
                              const Eigen::Isometry3d& T_cad_scan,
                              const std::vector<ComparisonPointConfig>& points,
+                             const DatumPrecedence& precedence,
                              double default_radius,
                              double max_distance) {
   DatumAlignment result;
@@ -244,8 +345,8 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
     result.message = "the datum targets all lie at one place: they fix no turn of the pose";
     return result;
   }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(constraints(targets, centre, spread),
-                                              Eigen::ComputeThinU | Eigen::ComputeFullV);
+  const Eigen::MatrixXd rows = constraints(targets, centre, spread);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(rows, Eigen::ComputeFullV);
   const Eigen::VectorXd& values = svd.singularValues();
   result.conditioning = values(5) / values(0);
   if (!(result.conditioning >= kMinDatumConditioning)) {
@@ -263,6 +364,9 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
                      held + ": the targets need normals along it";
     return result;
   }
+  result.precedence = datumOrder(precedence, points);
+  const Eigen::MatrixXd solve =
+      precedenceSolve(rows, datumGroups(targets, result.precedence), values(0));
   double settled = std::numeric_limits<double>::infinity();
   for (const Target& target : targets) {
     settled = std::min(settled, kSettledShareOfRadius * target.place.radius);
@@ -291,7 +395,7 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
     for (std::size_t i = 0; i < targets.size(); ++i) {
       deviation(static_cast<Eigen::Index>(i)) = readings[i].deviation;
     }
-    const Eigen::VectorXd motion = svd.solve(-deviation);
+    const Eigen::VectorXd motion = solve * -deviation;
     const Eigen::Vector3d turn = motion.head<3>() / spread;
     const Eigen::Vector3d shift = motion.tail<3>();
     step = 0.0;
@@ -322,13 +426,17 @@ DatumAlignment alignToDatums(const MeshQuery& cad,
   result.aligned = true;
   result.turn_deg = moved.angle * 180.0 / kPi;
   result.shift = moved.shift;
-  frameSpread(svd, readings, spread, &result);
-  char text[256];
+  frameSpread(solve, readings, spread, &result);
+  const std::string order = result.precedence.empty()
+                                ? "every target alike"
+                                : "in the order " + datumPrecedenceText(precedence, points);
+  char text[384];
   std::snprintf(text,
                 sizeof(text),
-                "aligned to %zu datum targets in %d round(s)%s: %.4g deg and %.4g mm from the best "
-                "fit; the readings' noise leaves the frame %.2g deg and %.2g mm (1 sigma)",
+                "aligned to %zu datum targets (%s) in %d round(s)%s: %.4g deg and %.4g mm from the "
+                "best fit; the readings' noise leaves the frame %.2g deg and %.2g mm (1 sigma)",
                 targets.size(),
+                order.c_str(),
                 result.rounds,
                 step <= settled ? "" : " (stopped at the limit, not settled)",
                 result.turn_deg,

@@ -1306,6 +1306,7 @@ void alignToDatumTargets(const Model& model,
                          points,
                          result->T_cad_scan,
                          config.comparison_points,
+                         config.datum_precedence,
                          model.cellSize(),
                          config.deviation.max_distance_ratio * model.bounds().diagonal());
   if (datums.aligned) {
@@ -1512,7 +1513,8 @@ std::vector<std::string> validate(const PipelineConfig& config) {
                            validate(config.deviation),
                            validate(config.defects),
                            validate(config.regions),
-                           validate(config.comparison_points)}) {
+                           validate(config.comparison_points),
+                           validate(config.datum_precedence, config.comparison_points)}) {
     errors.insert(errors.end(), list.begin(), list.end());
   }
   const VerdictConfig& verdict = config.verdict;

@@ -47,21 +47,24 @@ inline ToleranceConfig parseTolerance(const YAML::Node& tolerance, const std::st
 /// @brief The items of the list under `key` of a file's YAML text, each read by
 /// `parse_item(node, position)` (which throws std::runtime_error naming what is wrong) and then
 /// checked by `check(items)` (messages); any problem empties the list and gives kInvalidInput
-/// "invalid <kind>: <messages>". A file holds the list and nothing else.
+/// "invalid <kind>: <messages>". A file holds the list and nothing else but `other_keys`,
+/// which the caller reads.
 template <typename Item, typename ParseItem, typename Check>
 Status parseYamlList(const std::string& yaml_text,
                      const std::string& key,
                      const std::string& kind,
                      ParseItem parse_item,
                      Check check,
-                     std::vector<Item>* items) {
+                     std::vector<Item>* items,
+                     std::set<std::string> other_keys = {}) {
   std::vector<std::string> errors;
   try {
     const YAML::Node root = YAML::Load(yaml_text);
     if (!root.IsMap() || !root[key] || !root[key].IsSequence()) {
       errors.push_back("a " + kind + " file must hold a list under '" + key + ":'");
     } else {
-      checkKeys(root, {key}, "the " + kind + " file");
+      other_keys.insert(key);
+      checkKeys(root, other_keys, "the " + kind + " file");
       std::size_t position = 0;
       for (const auto& node : root[key]) {
         items->push_back(parse_item(node, position++));

@@ -105,7 +105,9 @@ InspectionNode::InspectionNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     model_error = installModel(config_.model,
                                config_.model_units,
                                config_.model_id,
-                               {config_.pipeline.regions, config_.pipeline.comparison_points},
+                               {config_.pipeline.regions,
+                                config_.pipeline.comparison_points,
+                                config_.pipeline.datum_precedence},
                                nullptr);
     if (!model_error.empty()) {
       ROS_ERROR_STREAM(model_error << " (the node keeps running; use ~load_model)");
@@ -326,6 +328,7 @@ bool InspectionNode::onLoadModel(LoadModel::Request& request, LoadModel::Respons
       fi::ComparisonPointsLoadResult points = fi::loadComparisonPointsFile(points_path);
       error = points.status.message;
       plan.comparison_points = std::move(points.points);
+      plan.datum_precedence = std::move(points.datum_precedence);
     }
   }
   if (error.empty()) {
@@ -516,6 +519,7 @@ InspectionReport InspectionNode::inspect(const Inspect::Request& request,
   fi::PipelineConfig pipeline = requestPipeline(config_.pipeline, request);
   pipeline.regions = plan.regions;
   pipeline.comparison_points = plan.comparison_points;
+  pipeline.datum_precedence = plan.datum_precedence;
   // ~input/crop_box is given in the fixed frame when there is one (a box around the fixture
   // holds wherever a robot carries the scanner), else in the scan's own.
   pipeline.input.crop_frame_from_scan = T_fixed_scan;

@@ -58,6 +58,7 @@ struct ScanMessage {
 struct ModelPlan {
   std::vector<freeform_inspection::RegionConfig> regions;
   std::vector<freeform_inspection::ComparisonPointConfig> comparison_points;
+  freeform_inspection::DatumPrecedence datum_precedence;
 };
 
 class InspectionNode {

@@ -163,6 +163,7 @@ NodeConfigResult loadNodeConfig(const ros::NodeHandle& pnh) {
         fi::loadComparisonPointsFile(resolveModelPath(config.points_file));
     if (points.status.ok()) {
       config.pipeline.comparison_points = std::move(points.points);
+      config.pipeline.datum_precedence = std::move(points.datum_precedence);
     } else {
       result.errors.push_back("~points_file: " + points.status.message);
     }

@@ -64,6 +64,7 @@ fi::ConfigLoadResult configure(const fi::CliOptions& options) {
     fi::ComparisonPointsLoadResult points = fi::loadComparisonPointsFile(options.points_path);
     loaded.status = points.status;
     loaded.config.comparison_points = std::move(points.points);
+    loaded.config.datum_precedence = std::move(points.datum_precedence);
   }
   if (options.tolerance) {
     loaded.config.tolerance.upper = *options.tolerance;

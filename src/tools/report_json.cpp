@@ -151,6 +151,7 @@ nlohmann::ordered_json datumAlignmentJson(const DatumAlignment& a) {
           {"rotation_from_best_fit_deg", numberOrNull(a.turn_deg)},
           {"translation_from_best_fit", numberOrNull(a.shift)},
           {"rounds", a.rounds},
+          {"precedence", a.precedence},
           {"conditioning", numberOrNull(a.conditioning)},
           {"rotation_std_deg", numberOrNull(a.rotation_std_deg)},
           {"translation_std", numberOrNull(a.translation_std)},

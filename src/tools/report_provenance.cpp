@@ -10,6 +10,7 @@
 
 #include "freeform_inspection/config_fields.h"
 #include "freeform_inspection/content_hash.h"
+#include "freeform_inspection/datum_alignment.h"
 
 namespace freeform_inspection {
 namespace {
@@ -93,6 +94,11 @@ std::vector<std::pair<std::string, std::string>> configEntries(const PipelineCon
       text += "; datum " + p.datum;  // a datum target moves the frame every deviation is read in
     }
     entries.emplace_back("points/" + p.name, text);
+  }
+  // The datums' order moves the frame as well when the targets hold an axis twice.
+  if (hasDatumTargets(config.comparison_points)) {
+    entries.emplace_back("points/datum_precedence",
+                         datumPrecedenceText(config.datum_precedence, config.comparison_points));
   }
   return entries;
 }

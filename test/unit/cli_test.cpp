@@ -671,6 +671,7 @@ TEST(Cli, DatumTargetsFixTheFrameTheDeviationIsMeasuredIn) {
     EXPECT_LT(std::abs(target["deviation_best_fit"].get<double>()), 5e-5) << target["name"];
   }
   EXPECT_GT(alignment["conditioning"].get<double>(), 0.02);
+  EXPECT_EQ(alignment["precedence"], nlohmann::json({"A", "B", "C"}));
   // The readings' noise (σ 0.02 mm over 9-19 points each) moves the frame by hundredths of a
   // degree; a frame fixed by something else than the targets would not read them all as zero.
   const double moved = alignment["rotation_from_best_fit_deg"].get<double>();
@@ -723,6 +724,19 @@ TEST(Cli, DatumTargetsFixTheFrameTheDeviationIsMeasuredIn) {
   EXPECT_EQ(at_fixed["comparison_points"][0]["verdict"], "PASS");
   EXPECT_NE(at_fixed["warnings"].dump().find("the datum targets do not move a fixed pose"),
             std::string::npos);
+
+  // A precedence that leaves a target's datum out is refused before anything is loaded.
+  const std::string unlisted = temp("unlisted_datum.yaml");
+  std::string text = slurp(datums);
+  text.replace(text.find("datum_precedence: [A, B, C]"), 27, "datum_precedence: [A, B]");
+  std::ofstream(unlisted) << text;
+  const CliRun bad = runCli(args + " --points " + unlisted);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_TRUE(bad.out.empty());
+  EXPECT_EQ(lineCount(bad.err), 1) << bad.err;
+  EXPECT_NE(bad.err.find("comparison point 'C1': datum 'C' is not in datum_precedence"),
+            std::string::npos)
+      << bad.err;
 }
 
 // The sample scan is of the fine blade; blade.stl samples its superellipse platform half as

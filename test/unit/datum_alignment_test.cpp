@@ -8,8 +8,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "test_shapes.h"
@@ -17,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "freeform_inspection/mesh_query.h"
+#include "freeform_inspection/pipeline.h"
 
 namespace freeform_inspection {
 namespace {
@@ -120,7 +123,7 @@ double angleDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
 
 TEST(DatumAlignment, ThreeTwoOneBringsBackTheFrameTheDatumFacesDefine) {
   const Points scan = inScanFrame(partSurface(0.0));
-  const DatumAlignment aligned = alignToDatums(box(), scan, bestFit(), nest(), 0.001, kReach);
+  const DatumAlignment aligned = alignToDatums(box(), scan, bestFit(), nest(), {}, 0.001, kReach);
   ASSERT_TRUE(aligned.requested);
   ASSERT_TRUE(aligned.aligned) << aligned.message;
   EXPECT_LT(angleDeg(aligned.T_cad_scan, truth()), 1e-6);
@@ -151,7 +154,7 @@ TEST(DatumAlignment, AFarStartEndsInTheSameFrame) {
   const Eigen::Isometry3d far =
       Eigen::Translation3d(0.003, -0.004, 0.0) *
       Eigen::AngleAxisd(2.0 * kPi / 180.0, Eigen::Vector3d(1.0, -0.5, 0.3).normalized()) * truth();
-  const DatumAlignment aligned = alignToDatums(box(), scan, far, nest(), 0.001, kReach);
+  const DatumAlignment aligned = alignToDatums(box(), scan, far, nest(), {}, 0.001, kReach);
   ASSERT_TRUE(aligned.aligned) << aligned.message;
   EXPECT_LT(angleDeg(aligned.T_cad_scan, truth()), 1e-6);
   EXPECT_LT(largestMove(aligned.T_cad_scan), 1e-8);
@@ -162,7 +165,7 @@ TEST(DatumAlignment, AFarStartEndsInTheSameFrame) {
 TEST(DatumAlignment, NoisyReadingsMoveThePoseByTheirMediansErrorOnly) {
   const double sigma = 2e-5;  // 0.02 mm along the normals
   const Points scan = inScanFrame(partSurface(sigma));
-  const DatumAlignment aligned = alignToDatums(box(), scan, bestFit(), nest(), 0.001, kReach);
+  const DatumAlignment aligned = alignToDatums(box(), scan, bestFit(), nest(), {}, 0.001, kReach);
   ASSERT_TRUE(aligned.aligned) << aligned.message;
   // Each reading is the median of ~113 points: about 1.25 σ / √113 = 2.4 µm. Over levers of 36
   // to 70 mm that turns the pose by a few thousandths of a degree.
@@ -175,10 +178,11 @@ TEST(DatumAlignment, NoisyReadingsMoveThePoseByTheirMediansErrorOnly) {
 
 // The spread the alignment reports for its frame is the spread it has: over 24 noise draws the
 // frame's errors about their least held axis and along their least held direction match the
-// reported 1σ (a sample of 24 gives its standard deviation within about ±30 %).
-TEST(DatumAlignment, TheFrameSpreadItReportsIsTheSpreadItHas) {
+// reported 1σ (a sample of 24 gives its standard deviation within about ±30 %). For 3-2-1, and
+// for eight targets fixed in order of precedence (a fourth on the bottom, one on the raised top
+// that nothing is left for).
+void expectTheReportedSpread(const std::vector<ComparisonPointConfig>& targets) {
   const double sigma = 2e-5;
-  const std::vector<ComparisonPointConfig> targets = nest();
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   Eigen::Matrix3d turns = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d shifts = Eigen::Matrix3d::Zero();
@@ -187,7 +191,8 @@ TEST(DatumAlignment, TheFrameSpreadItReportsIsTheSpreadItHas) {
   constexpr int kDraws = 24;
   for (int draw = 0; draw < kDraws; ++draw) {
     const Points scan = inScanFrame(partSurface(sigma, false, 100 + draw));
-    const DatumAlignment aligned = alignToDatums(box(), scan, bestFit(), targets, 0.001, kReach);
+    const DatumAlignment aligned =
+        alignToDatums(box(), scan, bestFit(), targets, {}, 0.001, kReach);
     ASSERT_TRUE(aligned.aligned) << aligned.message;
     if (draw == 0) {
       for (const DatumTargetReading& t : aligned.targets) {
@@ -223,13 +228,27 @@ TEST(DatumAlignment, TheFrameSpreadItReportsIsTheSpreadItHas) {
   EXPECT_LT(observed_shift, 1.6 * translation_std);
 }
 
-TEST(DatumAlignment, MoreTargetsThanSixAreFittedByLeastSquares) {
+TEST(DatumAlignment, TheFrameSpreadItReportsIsTheSpreadItHas) {
+  expectTheReportedSpread(nest());
+  std::vector<ComparisonPointConfig> more = nest();
+  more.push_back(target("A4", {0.0, -0.018, -kHalf.z()}));
+  more.push_back(target("D1", {0.01, 0.01, kHalf.z()}));
+  expectTheReportedSpread(more);
+}
+
+// Without precedence (`datum_precedence: none`) every target counts alike.
+TEST(DatumAlignment, WithoutPrecedenceMoreTargetsThanSixAreFittedByLeastSquares) {
   std::vector<ComparisonPointConfig> targets = nest();
   targets.push_back(target("A4", {0.0, -0.018, -kHalf.z()}));
   targets.push_back(target("D1", {0.01, 0.01, kHalf.z()}));  // on the raised top
   const Points scan = inScanFrame(partSurface(0.0));
-  const DatumAlignment aligned = alignToDatums(box(), scan, bestFit(), targets, 0.001, kReach);
+  DatumPrecedence alike;
+  alike.alike = true;
+  const DatumAlignment aligned =
+      alignToDatums(box(), scan, bestFit(), targets, alike, 0.001, kReach);
   ASSERT_TRUE(aligned.aligned) << aligned.message;
+  EXPECT_TRUE(aligned.precedence.empty());
+  EXPECT_NE(aligned.message.find("(every target alike)"), std::string::npos) << aligned.message;
   // The top's target alone disagrees with the rest: least squares leaves part of its 0.5 mm
   // there and spreads the rest over the bottom's targets.
   EXPECT_GT(std::abs(aligned.targets.back().aligned), 1e-4);
@@ -252,12 +271,59 @@ TEST(DatumAlignment, MoreTargetsThanSixAreFittedByLeastSquares) {
   EXPECT_GT(std::sqrt(squares), 2e-4);
 }
 
+// Seven targets and one more on the raised top (D1, above the bottom targets' centre): in the
+// order A, B, C, D (the default, alphabetical) the bottom, side and end fix the pose where the
+// truth has it and D1 reads the top's whole 0.5 mm; with D primary, D1 fixes the height first,
+// the part sits 0.5 mm lower and the bottom's targets read it instead.
+TEST(DatumAlignment, TheDatumFirstInPrecedenceFixesWhatLaterOnesWouldMove) {
+  std::vector<ComparisonPointConfig> targets = nest();
+  targets.push_back(target("A4", {0.0, -0.018, -kHalf.z()}));
+  targets.push_back(target("D1", {0.0, -0.009, kHalf.z()}));
+  const Points scan = inScanFrame(partSurface(0.0));
+  const auto reading = [](const DatumAlignment& aligned, const std::string& name) {
+    for (const DatumTargetReading& t : aligned.targets) {
+      if (t.name == name) {
+        return t.aligned;
+      }
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+
+  const DatumAlignment abcd = alignToDatums(box(), scan, bestFit(), targets, {}, 0.001, kReach);
+  ASSERT_TRUE(abcd.aligned) << abcd.message;
+  EXPECT_EQ(abcd.precedence, (std::vector<std::string>{"A", "B", "C", "D"}));
+  EXPECT_NE(abcd.message.find("in the order A, B, C, D"), std::string::npos) << abcd.message;
+  EXPECT_LT(angleDeg(abcd.T_cad_scan, truth()), 1e-6);
+  EXPECT_LT(largestMove(abcd.T_cad_scan), 1e-8);
+  for (const char* name : {"A1", "A2", "A3", "A4", "B1", "B2", "C1"}) {
+    EXPECT_LT(std::abs(reading(abcd, name)), 1e-8) << name;
+  }
+  EXPECT_NEAR(reading(abcd, "D1"), kTopRaised, 1e-8);
+
+  DatumPrecedence d_first;
+  d_first.order = {"D", "A", "B", "C"};
+  const DatumAlignment dabc =
+      alignToDatums(box(), scan, bestFit(), targets, d_first, 0.001, kReach);
+  ASSERT_TRUE(dabc.aligned) << dabc.message;
+  EXPECT_EQ(dabc.precedence, d_first.order);
+  const Eigen::Isometry3d lowered = Eigen::Translation3d(0.0, 0.0, -kTopRaised) * truth();
+  EXPECT_LT(angleDeg(dabc.T_cad_scan, lowered), 1e-6);
+  EXPECT_LT(largestMove(Eigen::Translation3d(0.0, 0.0, kTopRaised) * dabc.T_cad_scan), 1e-8);
+  EXPECT_LT(std::abs(reading(dabc, "D1")), 1e-8);
+  for (const char* name : {"A1", "A2", "A3", "A4"}) {
+    EXPECT_NEAR(reading(dabc, name), kTopRaised, 1e-8) << name;  // material below the CAD
+  }
+  for (const char* name : {"B1", "B2", "C1"}) {
+    EXPECT_LT(std::abs(reading(dabc, name)), 1e-8) << name;
+  }
+}
+
 TEST(DatumAlignment, SchemesThatCannotFixThePoseAreRefusedWithTheReason) {
   const Points scan = inScanFrame(partSurface(0.0));
   // Five targets.
   std::vector<ComparisonPointConfig> five = nest();
   five.pop_back();
-  DatumAlignment aligned = alignToDatums(box(), scan, bestFit(), five, 0.001, kReach);
+  DatumAlignment aligned = alignToDatums(box(), scan, bestFit(), five, {}, 0.001, kReach);
   EXPECT_TRUE(aligned.requested);
   EXPECT_FALSE(aligned.aligned);
   EXPECT_NE(aligned.message.find("6 are needed"), std::string::npos) << aligned.message;
@@ -268,7 +334,7 @@ TEST(DatumAlignment, SchemesThatCannotFixThePoseAreRefusedWithTheReason) {
                                                    target("A4", {-0.035, 0.018, -kHalf.z()}),
                                                    target("A5", {0.035, 0.018, -kHalf.z()}),
                                                    target("A6", {0.0, 0.0, -kHalf.z()})};
-  aligned = alignToDatums(box(), scan, bestFit(), flat, 0.001, kReach);
+  aligned = alignToDatums(box(), scan, bestFit(), flat, {}, 0.001, kReach);
   EXPECT_FALSE(aligned.aligned);
   EXPECT_NE(aligned.message.find("leave the pose free"), std::string::npos) << aligned.message;
   EXPECT_LT(aligned.conditioning, 1e-9);
@@ -277,6 +343,7 @@ TEST(DatumAlignment, SchemesThatCannotFixThePoseAreRefusedWithTheReason) {
                           inScanFrame(partSurface(0.0, /*without_x_low=*/true)),
                           bestFit(),
                           nest(),
+                          {},
                           0.001,
                           kReach);
   EXPECT_FALSE(aligned.aligned);
@@ -285,7 +352,7 @@ TEST(DatumAlignment, SchemesThatCannotFixThePoseAreRefusedWithTheReason) {
   // A target 20 mm off the surface (a position in other units?).
   std::vector<ComparisonPointConfig> off = nest();
   off[3].position.y() -= 0.02;
-  aligned = alignToDatums(box(), scan, bestFit(), off, 0.001, kReach);
+  aligned = alignToDatums(box(), scan, bestFit(), off, {}, 0.001, kReach);
   EXPECT_FALSE(aligned.aligned);
   EXPECT_NE(aligned.message.find("'B1' (B) lies 20 mm off the CAD surface"), std::string::npos)
       << aligned.message;
@@ -294,7 +361,7 @@ TEST(DatumAlignment, SchemesThatCannotFixThePoseAreRefusedWithTheReason) {
   for (ComparisonPointConfig& p : plain) {
     p.datum.clear();
   }
-  aligned = alignToDatums(box(), scan, bestFit(), plain, 0.001, kReach);
+  aligned = alignToDatums(box(), scan, bestFit(), plain, {}, 0.001, kReach);
   EXPECT_FALSE(aligned.requested);
   EXPECT_FALSE(aligned.aligned);
 }
@@ -313,6 +380,54 @@ TEST(DatumAlignment, TheDatumKeyIsReadFromThePointsFile) {
   EXPECT_FALSE(empty.status.ok());
   EXPECT_NE(empty.status.message.find("datum must name a datum"), std::string::npos)
       << empty.status.message;
+}
+
+TEST(DatumAlignment, ThePrecedenceIsReadBesideThePointsAndChecked) {
+  const std::string points =
+      "points:\n"
+      "  - {name: A1, position: [0, 0, 0], datum: A}\n"
+      "  - {name: B1, position: [0, 0, 0.1], datum: B}\n"
+      "  - {name: C1, position: [0, 0, 0.2], datum: C}\n"
+      "  - {name: tip, position: [0, 0, 0.3]}\n";
+  ComparisonPointsLoadResult read = parseComparisonPoints(points);
+  ASSERT_TRUE(read.status.ok()) << read.status.message;
+  EXPECT_FALSE(read.datum_precedence.alike);
+  EXPECT_TRUE(read.datum_precedence.order.empty());
+  EXPECT_EQ(datumOrder(read.datum_precedence, read.points),
+            (std::vector<std::string>{"A", "B", "C"}));
+
+  read = parseComparisonPoints(points + "datum_precedence: [B, C, A]\n");
+  ASSERT_TRUE(read.status.ok()) << read.status.message;
+  EXPECT_EQ(read.datum_precedence.order, (std::vector<std::string>{"B", "C", "A"}));
+  EXPECT_EQ(datumPrecedenceText(read.datum_precedence, read.points), "B, C, A");
+
+  read = parseComparisonPoints(points + "datum_precedence: none\n");
+  ASSERT_TRUE(read.status.ok()) << read.status.message;
+  EXPECT_TRUE(read.datum_precedence.alike);
+  EXPECT_TRUE(datumOrder(read.datum_precedence, read.points).empty());
+
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"datum_precedence: [A, B]\n", "comparison point 'C1': datum 'C' is not in datum_precedence"},
+      {"datum_precedence: [A, B, C, A]\n", "lists datum 'A' twice"},
+      {"datum_precedence: [A, B, C, E]\n", "'E', which no comparison point is a target of"},
+      {"datum_precedence: []\n", "datum_precedence must list the datums"},
+      {"datum_precedence: all\n", "datum_precedence must list the datums"},
+      {"datum_precedence: [[A, B], C]\n", "datum_precedence must list the datums"},
+      {"precedence: [A, B, C]\n", "unknown key 'precedence'"}};
+  for (const auto& [text, expected] : refused) {
+    read = parseComparisonPoints(points + text);
+    EXPECT_FALSE(read.status.ok()) << text;
+    EXPECT_NE(read.status.message.find(expected), std::string::npos)
+        << text << ": " << read.status.message;
+    EXPECT_TRUE(read.points.empty()) << text;
+  }
+  // A configuration built in code is checked the same way.
+  PipelineConfig config;
+  config.comparison_points = parseComparisonPoints(points).points;
+  config.datum_precedence.order = {"A", "C"};
+  const std::vector<std::string> errors = validate(config);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("datum 'B' is not in datum_precedence"), std::string::npos) << errors[0];
 }
 
 }  // namespace

@@ -500,7 +500,7 @@ TEST(Inspection, DatumFrameReadsABentTipWhereTheBestFitSharesIt) {
   }
   // The frame is the targets', not the start's: aligned from the truth it is the same.
   const DatumAlignment from_truth = alignToDatums(
-      blade().query(), bent.scan.points, truth, points, blade().cellSize(), 0.05 * diagonal());
+      blade().query(), bent.scan.points, truth, points, {}, blade().cellSize(), 0.05 * diagonal());
   ASSERT_TRUE(from_truth.aligned) << from_truth.message;
   const double apart =
       Eigen::AngleAxisd(from_truth.T_cad_scan.linear().transpose() * datums.T_cad_scan.linear())
