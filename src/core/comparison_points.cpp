@@ -153,32 +153,22 @@ std::vector<std::string> validate(const DatumPrecedence& precedence,
 
 ComparisonPointsLoadResult parseComparisonPoints(const std::string& yaml_text) {
   ComparisonPointsLoadResult result;
-  std::string precedence_error;
-  try {
-    const YAML::Node root = YAML::Load(yaml_text);
-    if (root.IsMap()) {
-      result.datum_precedence = parsePrecedence(root["datum_precedence"]);
-    }
-  } catch (const YAML::Exception&) {
-    // parseYamlList reports the file's syntax
-  } catch (const std::runtime_error& e) {
-    precedence_error = e.what();
-  }
-  result.status = internal::parseYamlList(yaml_text,
-                                          "points",
-                                          "comparison points",
-                                          parsePoint,
-                                          [&](const auto& items) {
-                                            std::vector<std::string> errors = validate(items);
-                                            std::vector<std::string> order =
-                                                precedence_error.empty()
-                                                    ? validate(result.datum_precedence, items)
-                                                    : std::vector<std::string>{precedence_error};
-                                            errors.insert(errors.end(), order.begin(), order.end());
-                                            return errors;
-                                          },
-                                          &result.points,
-                                          {"datum_precedence"});
+  result.status = internal::parseYamlList(
+      yaml_text,
+      "points",
+      "comparison points",
+      parsePoint,
+      [&result](const auto& items) {
+        std::vector<std::string> errors = validate(items);
+        const std::vector<std::string> order = validate(result.datum_precedence, items);
+        errors.insert(errors.end(), order.begin(), order.end());
+        return errors;
+      },
+      &result.points,
+      {"datum_precedence"},
+      [&result](const YAML::Node& root) {
+        result.datum_precedence = parsePrecedence(root["datum_precedence"]);
+      });
   if (!result.status.ok()) {
     result.datum_precedence = {};
   }

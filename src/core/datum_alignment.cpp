@@ -55,16 +55,10 @@ Eigen::MatrixXd constraints(const std::vector<Target>& targets,
   return rows;
 }
 
-// The rows of each datum's targets, in the datums' order; one group of every row when alike.
+// The rows of each datum's targets, in the datums' order; none when alike (precedenceSolve()
+// fits every row at once after the groups).
 std::vector<std::vector<Eigen::Index>> datumGroups(const std::vector<Target>& targets,
                                                    const std::vector<std::string>& order) {
-  if (order.empty()) {
-    std::vector<Eigen::Index> all(targets.size());
-    for (std::size_t i = 0; i < targets.size(); ++i) {
-      all[i] = static_cast<Eigen::Index>(i);
-    }
-    return {all};
-  }
   std::vector<std::vector<Eigen::Index>> groups;
   for (const std::string& datum : order) {
     groups.emplace_back();
@@ -80,8 +74,8 @@ std::vector<std::vector<Eigen::Index>> datumGroups(const std::vector<Target>& ta
 // The linear map S from the readings to cancel to the motion that cancels them, datum by datum
 // (least squares in order of precedence): each datum's rows are fitted by the motions the datums
 // before it left free, as far as they hold them (singular values from kMinDatumConditioning of
-// the scheme's strongest); what is still free then is fitted to every target at once. One group
-// of every row is plain least squares, S = the pseudo-inverse. Fixed by the nominal targets, so
+// the scheme's strongest); what is still free then is fitted to every target at once. Without
+// groups that is plain least squares, S = the pseudo-inverse. Fixed by the nominal targets, so
 // computed once for every round.
 Eigen::MatrixXd precedenceSolve(const Eigen::MatrixXd& rows,
                                 const std::vector<std::vector<Eigen::Index>>& groups,

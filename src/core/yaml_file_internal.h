@@ -5,6 +5,7 @@
 // Internal to the core library: what the YAML files of an inspection plan (regions.h,
 // comparison_points.h) share. Not installed.
 
+#include <functional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -47,8 +48,8 @@ inline ToleranceConfig parseTolerance(const YAML::Node& tolerance, const std::st
 /// @brief The items of the list under `key` of a file's YAML text, each read by
 /// `parse_item(node, position)` (which throws std::runtime_error naming what is wrong) and then
 /// checked by `check(items)` (messages); any problem empties the list and gives kInvalidInput
-/// "invalid <kind>: <messages>". A file holds the list and nothing else but `other_keys`,
-/// which the caller reads.
+/// "invalid <kind>: <messages>". A file holds the list and nothing else but `other_keys`, which
+/// `read_other_keys(root)` reads before the list (throwing std::runtime_error as parse_item).
 template <typename Item, typename ParseItem, typename Check>
 Status parseYamlList(const std::string& yaml_text,
                      const std::string& key,
@@ -56,7 +57,8 @@ Status parseYamlList(const std::string& yaml_text,
                      ParseItem parse_item,
                      Check check,
                      std::vector<Item>* items,
-                     std::set<std::string> other_keys = {}) {
+                     std::set<std::string> other_keys = {},
+                     const std::function<void(const YAML::Node&)>& read_other_keys = nullptr) {
   std::vector<std::string> errors;
   try {
     const YAML::Node root = YAML::Load(yaml_text);
@@ -65,6 +67,9 @@ Status parseYamlList(const std::string& yaml_text,
     } else {
       other_keys.insert(key);
       checkKeys(root, other_keys, "the " + kind + " file");
+      if (read_other_keys) {
+        read_other_keys(root);
+      }
       std::size_t position = 0;
       for (const auto& node : root[key]) {
         items->push_back(parse_item(node, position++));
